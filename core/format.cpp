@@ -1,0 +1,22 @@
+#include "core/format.hpp"
+
+#include <cstdio>
+
+namespace lamina::core {
+
+std::string formatExact(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  std::string s = buf;
+  if (s.find_first_of(".eEn") == std::string::npos) // "nan"/"inf" contain 'n'
+    s += ".0";
+  return s;
+}
+
+std::string formatShort(double x, int digits) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
+} // namespace lamina::core

@@ -1,0 +1,17 @@
+#pragma once
+/// @file format.hpp
+/// @brief Number formatting shared by every text output of lamina.
+
+#include <string>
+
+namespace lamina::core {
+
+/// Formats @p x with 17 significant digits ("%.17g"): parsing the text back
+/// gives exactly the same double. Always contains a '.', 'e', "inf" or "nan"
+/// so that TOML reads it as a float.
+std::string formatExact(double x);
+
+/// Formats @p x with @p digits significant digits for humans ("%.*g").
+std::string formatShort(double x, int digits = 6);
+
+} // namespace lamina::core

@@ -1,0 +1,176 @@
+#include "core/hdf5_file.hpp"
+
+#include "core/error.hpp"
+
+namespace lamina::core {
+
+H5Handle& H5Handle::operator=(H5Handle&& o) noexcept {
+  if (this != &o) {
+    reset();
+    id_ = o.id_;
+    closer_ = o.closer_;
+    o.id_ = -1;
+  }
+  return *this;
+}
+
+void H5Handle::reset() {
+  if (id_ >= 0 && closer_)
+    closer_(id_);
+  id_ = -1;
+}
+
+namespace {
+struct SilenceHdf5 {
+  SilenceHdf5() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+};
+const SilenceHdf5 silence_hdf5_stack_dumps; // errors are reported as lamina::Error
+} // namespace
+
+H5File::H5File(const std::filesystem::path& path, Mode mode) : path_(path) {
+  hid_t id = -1;
+  switch (mode) {
+  case Mode::Create: id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); break;
+  case Mode::ReadOnly: id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT); break;
+  case Mode::ReadWrite: id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT); break;
+  }
+  if (id < 0)
+    fail(mode == Mode::Create ? "cannot create HDF5 file" : "cannot open HDF5 file", "");
+  file_ = H5Handle(id, H5Fclose);
+}
+
+void H5File::fail(const std::string& what, const std::string& object) const {
+  throw Error(what, {path_.string(), 0, object});
+}
+
+bool H5File::exists(const std::string& name) const {
+  if (name == "/")
+    return true;
+  // Check each prefix: H5Lexists fails on a missing intermediate group.
+  std::size_t pos = 0;
+  while (true) {
+    pos = name.find('/', pos + 1);
+    const std::string prefix = name.substr(0, pos);
+    if (!prefix.empty() && prefix != "/" && H5Lexists(file_.id(), prefix.c_str(), H5P_DEFAULT) <= 0)
+      return false;
+    if (pos == std::string::npos)
+      return true;
+  }
+}
+
+void H5File::createGroup(const std::string& name) {
+  if (exists(name))
+    return;
+  H5Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl.id(), 1);
+  const hid_t g = H5Gcreate2(file_.id(), name.c_str(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT);
+  if (g < 0)
+    fail("cannot create group", name);
+  H5Gclose(g);
+}
+
+void H5File::write(const std::string& name, hid_t type, const void* data,
+                   const std::vector<std::uint64_t>& dims) {
+  std::vector<hsize_t> d(dims.begin(), dims.end());
+  H5Handle space(H5Screate_simple(static_cast<int>(d.size()), d.data(), nullptr), H5Sclose);
+  if (space.id() < 0)
+    fail("cannot create dataspace", name);
+  H5Handle lcpl(H5Pcreate(H5P_LINK_CREATE), H5Pclose);
+  H5Pset_create_intermediate_group(lcpl.id(), 1);
+  if (exists(name))
+    H5Ldelete(file_.id(), name.c_str(), H5P_DEFAULT);
+  H5Handle set(
+      H5Dcreate2(file_.id(), name.c_str(), type, space.id(), lcpl.id(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Dclose);
+  if (set.id() < 0)
+    fail("cannot create dataset", name);
+  if (H5Dwrite(set.id(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    fail("cannot write dataset", name);
+}
+
+void H5File::writeDoubles(const std::string& name, const double* data,
+                          const std::vector<std::uint64_t>& dims) {
+  write(name, H5T_NATIVE_DOUBLE, data, dims);
+}
+
+void H5File::writeInts(const std::string& name, const std::int32_t* data,
+                       const std::vector<std::uint64_t>& dims) {
+  write(name, H5T_NATIVE_INT32, data, dims);
+}
+
+namespace {
+template <typename T>
+std::vector<T> readAll(hid_t file, const std::string& name, hid_t type,
+                       std::vector<std::uint64_t>& dims, const H5File& self) {
+  H5Handle set(H5Dopen2(file, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (set.id() < 0)
+    throw Error("no such dataset", {self.path().string(), 0, name});
+  H5Handle space(H5Dget_space(set.id()), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.id());
+  std::vector<hsize_t> d(static_cast<std::size_t>(std::max(rank, 0)));
+  H5Sget_simple_extent_dims(space.id(), d.data(), nullptr);
+  dims.assign(d.begin(), d.end());
+  std::size_t n = 1;
+  for (hsize_t x : d)
+    n *= x;
+  std::vector<T> out(n);
+  if (n > 0 && H5Dread(set.id(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+    throw Error("cannot read dataset", {self.path().string(), 0, name});
+  return out;
+}
+} // namespace
+
+std::vector<double> H5File::readDoubles(const std::string& name,
+                                        std::vector<std::uint64_t>& dims) const {
+  return readAll<double>(file_.id(), name, H5T_NATIVE_DOUBLE, dims, *this);
+}
+
+std::vector<std::int32_t> H5File::readInts(const std::string& name,
+                                           std::vector<std::uint64_t>& dims) const {
+  return readAll<std::int32_t>(file_.id(), name, H5T_NATIVE_INT32, dims, *this);
+}
+
+void H5File::writeAttribute(const std::string& object, const std::string& attr,
+                            const std::string& value) {
+  H5Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.id(), value.size() + 1);
+  H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  if (H5Aexists_by_name(file_.id(), object.c_str(), attr.c_str(), H5P_DEFAULT) > 0)
+    H5Adelete_by_name(file_.id(), object.c_str(), attr.c_str(), H5P_DEFAULT);
+  H5Handle a(H5Acreate_by_name(file_.id(), object.c_str(), attr.c_str(), type.id(), space.id(),
+                               H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             H5Aclose);
+  if (a.id() < 0 || H5Awrite(a.id(), type.id(), value.c_str()) < 0)
+    fail("cannot write attribute " + attr, object);
+}
+
+void H5File::writeAttribute(const std::string& object, const std::string& attr, double value) {
+  H5Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  if (H5Aexists_by_name(file_.id(), object.c_str(), attr.c_str(), H5P_DEFAULT) > 0)
+    H5Adelete_by_name(file_.id(), object.c_str(), attr.c_str(), H5P_DEFAULT);
+  H5Handle a(H5Acreate_by_name(file_.id(), object.c_str(), attr.c_str(), H5T_NATIVE_DOUBLE,
+                               space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+             H5Aclose);
+  if (a.id() < 0 || H5Awrite(a.id(), H5T_NATIVE_DOUBLE, &value) < 0)
+    fail("cannot write attribute " + attr, object);
+}
+
+std::string H5File::readStringAttribute(const std::string& object, const std::string& attr) const {
+  H5Handle a(H5Aopen_by_name(file_.id(), object.c_str(), attr.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+             H5Aclose);
+  if (a.id() < 0)
+    fail("no attribute " + attr, object);
+  H5Handle type(H5Aget_type(a.id()), H5Tclose);
+  const std::size_t size = H5Tget_size(type.id());
+  std::string out(size, '\0');
+  H5Handle mem(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(mem.id(), size);
+  if (H5Aread(a.id(), mem.id(), out.data()) < 0)
+    fail("cannot read attribute " + attr, object);
+  out.resize(out.find('\0') == std::string::npos ? out.size() : out.find('\0'));
+  return out;
+}
+
+void H5File::flush() { H5Fflush(file_.id(), H5F_SCOPE_GLOBAL); }
+
+} // namespace lamina::core

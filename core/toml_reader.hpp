@@ -1,0 +1,116 @@
+#pragma once
+/// @file toml_reader.hpp
+/// @brief Strict reading of TOML input (case files, cells, catalog, library).
+///
+/// Contract: every value is read through a TableReader, which records what it
+/// read. After reading, the root reader's finish() walks the whole document
+/// and throws lamina::Error for the first key that was never read, naming
+/// the file, the line and the dotted key. Type errors and missing required
+/// keys are reported the same way. Nothing is silently ignored.
+
+#include <toml++/toml.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace lamina::core {
+
+/// Parses a TOML file. Throws lamina::Error naming the file (and the line of
+/// a syntax error) when it cannot be read or parsed.
+toml::table parseTomlFile(const std::filesystem::path& path);
+
+/// Parses TOML text; @p source_name names it in error messages.
+toml::table parseTomlString(std::string_view text, const std::string& source_name);
+
+/// Applies a command-line override "a.b.c=value" to @p doc. The value is
+/// parsed as a TOML value (number, bool, string in quotes, array); a bare word
+/// that is not valid TOML is taken as a string. Intermediate tables are
+/// created. Throws lamina::Error on a malformed override.
+void applyOverride(toml::table& doc, const std::string& assignment);
+
+/// Strict, recording view of one TOML table. Copies share the record of
+/// what was read, so a reader for a sub-table marks keys of the whole
+/// document. The viewed table must outlive the reader.
+class TableReader {
+public:
+  /// @param table the table to read
+  /// @param file file name used in error messages
+  /// @param prefix dotted path of @p table in the document ("" for the root)
+  TableReader(const toml::table& table, std::string file, std::string prefix = "");
+
+  /// @return whether @p key is present (does not mark it read)
+  bool has(std::string_view key) const;
+  /// @return the keys present, in document order
+  std::vector<std::string> keys() const;
+
+  /// Required number (integer or float accepted).
+  double getDouble(std::string_view key) const;
+  /// Optional number with a default.
+  double getDouble(std::string_view key, double fallback) const;
+  /// Required integer.
+  std::int64_t getInt(std::string_view key) const;
+  /// Optional integer with a default.
+  std::int64_t getInt(std::string_view key, std::int64_t fallback) const;
+  /// Optional boolean with a default.
+  bool getBool(std::string_view key, bool fallback) const;
+  /// Required string.
+  std::string getString(std::string_view key) const;
+  /// Optional string with a default.
+  std::string getString(std::string_view key, const std::string& fallback) const;
+  /// Required array of numbers.
+  std::vector<double> getDoubleArray(std::string_view key) const;
+  /// Required array of strings.
+  std::vector<std::string> getStringArray(std::string_view key) const;
+  /// Required array of arrays of numbers (a matrix, rows first).
+  std::vector<std::vector<double>> getMatrix(std::string_view key) const;
+
+  /// Required sub-table.
+  TableReader table(std::string_view key) const;
+  /// Optional sub-table.
+  std::optional<TableReader> optionalTable(std::string_view key) const;
+  /// Array of tables (`[[key]]`); empty if absent.
+  std::vector<TableReader> tableArray(std::string_view key) const;
+
+  /// Marks @p key and everything below it as read and returns the node
+  /// (nullptr if absent). For free-form content such as provenance.
+  const toml::node* raw(std::string_view key) const;
+
+  /// Checks that every key of the whole document was read. Call on the root
+  /// reader once reading is done. Throws lamina::Error on the first unknown key.
+  void finish() const;
+
+  /// Throws lamina::Error about @p key of this table (file, line, dotted key).
+  [[noreturn]] void fail(std::string_view key, const std::string& message) const;
+  /// Throws lamina::Error about this table itself.
+  [[noreturn]] void failHere(const std::string& message) const;
+
+  /// @return the dotted path of @p key in the document
+  std::string path(std::string_view key) const;
+  /// @return the file name given at construction
+  const std::string& file() const { return file_; }
+  /// @return the viewed table
+  const toml::table& tomlTable() const { return *table_; }
+
+private:
+  struct Record {
+    std::set<std::string> read;  // dotted paths read
+    std::set<std::string> whole; // dotted paths accepted with their subtree
+  };
+  const toml::node& require(std::string_view key) const;
+  void mark(std::string_view key) const;
+  void checkUnread(const toml::table& t, const std::string& prefix) const;
+  int lineOf(std::string_view key) const;
+
+  const toml::table* table_;
+  std::string file_;
+  std::string prefix_;
+  std::shared_ptr<Record> record_;
+};
+
+} // namespace lamina::core

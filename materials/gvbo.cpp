@@ -1,0 +1,26 @@
+#include "materials/gvbo.hpp"
+
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lamina::materials {
+
+GvboModuli gvboModuli(const GvboParameters& g, double J) {
+  LAMINA_CHECK(J > 0 && std::isfinite(J), "GVBO state J must be positive, got ", J);
+  // eq. (15)
+  const double lambda0 = g.E0 * g.nu0 / ((1 + g.nu0) * (1 - 2 * g.nu0));
+  const double G0 = g.E0 / (2 * (1 + g.nu0));
+  // eq. (13), clamped from below (text after eq. (16))
+  const double Jp = std::pow(J, g.p);
+  const double lambda = std::max(lambda0, Jp * lambda0);
+  const double G = std::max(G0, Jp * (G0 - lambda0 * std::log(J)));
+  // eq. (16)
+  double E = G * (3 * lambda + 2 * G) / (lambda + G);
+  const double nu = lambda / (2 * (lambda + G));
+  E = std::max(E, g.E0); // never below E0; with lambda >= lambda0, G >= G0 this holds already
+  return {lambda, G, E, nu};
+}
+
+} // namespace lamina::materials

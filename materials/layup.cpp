@@ -1,0 +1,69 @@
+#include "materials/layup.hpp"
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace lamina::materials {
+
+namespace {
+double parseNumber(const std::string& s, const std::string& what, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
+    throw Error("ply " + what + " '" + s + "' is not a number (expected MATERIAL:ANGLE_DEG:THICKNESS_M)",
+                {"--ply", 0, text});
+  return v;
+}
+} // namespace
+
+Ply parsePly(const std::string& text) {
+  const auto b = text.rfind(':');
+  const auto a = b == std::string::npos || b == 0 ? std::string::npos : text.rfind(':', b - 1);
+  if (a == std::string::npos || a == 0)
+    throw Error("ply must read MATERIAL:ANGLE_DEG:THICKNESS_M", {"--ply", 0, text});
+  Ply p;
+  p.material = text.substr(0, a);
+  p.angle_deg = parseNumber(text.substr(a + 1, b - a - 1), "angle", text);
+  p.thickness = parseNumber(text.substr(b + 1), "thickness", text);
+  if (!(p.thickness > 0))
+    throw Error("ply thickness must be positive (m)", {"--ply", 0, text});
+  return p;
+}
+
+Material makeLayup(const std::string& name, const std::vector<Ply>& plies,
+                   const MaterialLookup& lookup) {
+  if (plies.empty())
+    throw Error("a layup needs at least one ply", {"", 0, name});
+  Matrix6 sum = Matrix6::Zero();
+  double h = 0, mass = 0;
+  toml::array plyText;
+  for (const Ply& p : plies) {
+    if (!(p.thickness > 0) || !std::isfinite(p.thickness))
+      throw Error("ply thickness must be positive (m), got " + core::formatShort(p.thickness),
+                  {"", 0, name + ": ply " + p.material});
+    const Material m = lookup(p.material);
+    // D = sum h_k R_k D_k R_k^T / h (DESIGN.md, "Layered membranes"): the same
+    // strain acts through the thickness, so stiffnesses add by thickness.
+    sum += p.thickness * m.C.rotated(axisRotationDegrees(2, p.angle_deg)).matrix();
+    mass += p.thickness * m.density;
+    h += p.thickness;
+    plyText.push_back(p.material + ":" + core::formatShort(p.angle_deg, 17) + ":" +
+                      core::formatShort(p.thickness, 17));
+  }
+  Material out;
+  out.name = name;
+  out.kind = "layup";
+  out.C = Stiffness(sum / h).symmetrized();
+  out.density = mass / h;
+  out.thickness = h;
+  out.plies = plies;
+  out.provenance.insert("method", "exact thickness average D = sum h_k R_k D_k R_k^T / h");
+  out.provenance.insert("plies", plyText);
+  validate(out);
+  return out;
+}
+
+} // namespace lamina::materials

@@ -1,0 +1,272 @@
+#include "materials/library.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/toml_reader.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace lamina::materials {
+
+namespace {
+
+constexpr const char* kFormat = "lamina-materials-library";
+constexpr std::int64_t kVersion = 1;
+
+bool isBareKey(const std::string& k) {
+  if (k.empty())
+    return false;
+  for (char ch : k)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
+      return false;
+  return true;
+}
+
+std::string quoteBasic(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char ch : s) {
+    switch (ch) {
+    case '"': out += "\\\""; break;
+    case '\\': out += "\\\\"; break;
+    case '\n': out += "\\n"; break;
+    case '\t': out += "\\t"; break;
+    case '\r': out += "\\r"; break;
+    default:
+      if (ch < 0x20 || ch == 0x7f) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+        out += buf;
+      } else {
+        out += static_cast<char>(ch);
+      }
+    }
+  }
+  return out + "\"";
+}
+
+std::string key(const std::string& k) { return isBareKey(k) ? k : quoteBasic(k); }
+
+std::string stringValue(const std::string& s) {
+  // Multi-line text (e.g. the input file that made an entry) as a literal
+  // block, which keeps the library diffable; otherwise a basic string.
+  bool literalOk = s.find('\n') != std::string::npos && s.find("'''") == std::string::npos;
+  for (unsigned char ch : s)
+    if ((ch < 0x20 && ch != '\n' && ch != '\t') || ch == 0x7f)
+      literalOk = false;
+  if (literalOk && s.back() != '\'')
+    return "'''\n" + s + "'''";
+  return quoteBasic(s);
+}
+
+std::string value(const toml::node& n);
+
+std::string inlineTable(const toml::table& t) {
+  std::string out = "{ ";
+  bool first = true;
+  for (const auto& [k, v] : t) {
+    out += (first ? "" : ", ") + key(std::string(k.str())) + " = " + value(v);
+    first = false;
+  }
+  return out + (first ? "}" : " }");
+}
+
+std::string value(const toml::node& n) {
+  if (auto s = n.value_exact<std::string>())
+    return stringValue(*s);
+  if (auto i = n.value_exact<std::int64_t>())
+    return std::to_string(*i);
+  if (auto d = n.value_exact<double>())
+    return core::formatExact(*d);
+  if (auto b = n.value_exact<bool>())
+    return *b ? "true" : "false";
+  if (const toml::array* a = n.as_array()) {
+    std::string out = "[";
+    bool first = true;
+    for (const toml::node& e : *a) {
+      out += (first ? "" : ", ") + value(e);
+      first = false;
+    }
+    return out + "]";
+  }
+  if (const toml::table* t = n.as_table())
+    return inlineTable(*t);
+  std::ostringstream os; // dates and times: keep their TOML text as a string
+  n.visit([&os](const auto& v) { os << v; });
+  return quoteBasic(os.str());
+}
+
+Material readEntry(const core::TableReader& t, const std::string& name) {
+  Material m;
+  m.name = name;
+  m.kind = t.getString("kind");
+  if (m.kind != "catalog" && m.kind != "homogenized" && m.kind != "layup" && m.kind != "constants")
+    t.fail("kind", "unknown kind '" + m.kind + "' (catalog, homogenized, layup, constants)");
+  m.density = t.getDouble("density");
+  const auto rows = t.getMatrix("C");
+  if (rows.size() != 6)
+    t.fail("C", "expected 6 rows of 6 numbers (Pa, lamina order)");
+  Matrix6 c;
+  for (int i = 0; i < 6; ++i) {
+    const auto& row = rows[static_cast<std::size_t>(i)];
+    if (row.size() != 6)
+      t.fail("C", "expected 6 rows of 6 numbers (Pa, lamina order)");
+    for (int j = 0; j < 6; ++j)
+      c(i, j) = row[static_cast<std::size_t>(j)];
+  }
+  m.C = Stiffness(c);
+  if (t.has("thickness"))
+    m.thickness = t.getDouble("thickness");
+  m.side_file = t.getString("side_file", "");
+  for (const core::TableReader& p : t.tableArray("plies"))
+    m.plies.push_back({p.getString("material"), p.getDouble("angle_deg"), p.getDouble("thickness")});
+  if (const toml::node* prov = t.raw("provenance")) {
+    if (!prov->is_table())
+      t.fail("provenance", "expected a table");
+    m.provenance = *prov->as_table();
+  }
+  try {
+    validate(m);
+  } catch (const Error& e) {
+    t.fail("C", e.message());
+  }
+  return m;
+}
+
+} // namespace
+
+std::filesystem::path Library::resolvePath(const std::string& cli_path) {
+  if (!cli_path.empty())
+    return cli_path;
+  if (const char* env = std::getenv(kEnvVar); env && *env)
+    return env;
+  if (const char* xdg = std::getenv("XDG_DATA_HOME"); xdg && *xdg)
+    return std::filesystem::path(xdg) / "lamina" / "library.toml";
+  const char* home = std::getenv("HOME");
+  return std::filesystem::path(home && *home ? home : ".") / ".local" / "share" / "lamina" /
+         "library.toml";
+}
+
+Library::Library(std::filesystem::path path) : path_(std::move(path)) { reload(); }
+
+void Library::reload() {
+  entries_.clear();
+  if (!std::filesystem::exists(path_))
+    return;
+  std::ifstream in(path_, std::ios::binary);
+  if (!in)
+    throw Error("cannot read materials library", {path_.string(), 0, ""});
+  std::stringstream ss;
+  ss << in.rdbuf();
+  entries_ = parse(ss.str(), path_.string());
+}
+
+std::map<std::string, Material> Library::parse(const std::string& text, const std::string& source) {
+  const toml::table doc = core::parseTomlString(text, source);
+  const core::TableReader root(doc, source);
+  if (!root.has("lamina"))
+    throw Error("not a lamina materials library (no [lamina] header table); refusing to use it",
+                {source, 1, "lamina"});
+  const core::TableReader head = root.table("lamina");
+  if (head.getString("format") != kFormat)
+    head.fail("format", std::string("not a lamina materials library (expected format = \"") +
+                            kFormat + "\")");
+  const std::int64_t version = head.getInt("version");
+  if (version != kVersion)
+    head.fail("version", "unsupported library version " + std::to_string(version));
+  std::map<std::string, Material> out;
+  if (auto mats = root.optionalTable("materials"))
+    for (const std::string& name : mats->keys())
+      out.emplace(name, readEntry(mats->table(name), name));
+  root.finish();
+  return out;
+}
+
+std::string Library::serialize(const std::map<std::string, Material>& entries) {
+  std::ostringstream os;
+  os << "# lamina materials library. Written by lamina programs; change it with `materials`.\n"
+     << "# C: 6x6 stiffness in Pa, lamina order [xx, yy, zz, xy, yz, xz], engineering shear.\n"
+     << "[lamina]\nformat = \"" << kFormat << "\"\nversion = " << kVersion << "\n";
+  for (const auto& [name, m] : entries) {
+    const std::string head = "materials." + key(name);
+    os << "\n[" << head << "]\n";
+    os << "kind = " << quoteBasic(m.kind) << "\n";
+    os << "density = " << core::formatExact(m.density) << "\n";
+    if (m.thickness)
+      os << "thickness = " << core::formatExact(*m.thickness) << "\n";
+    if (!m.side_file.empty())
+      os << "side_file = " << quoteBasic(m.side_file) << "\n";
+    os << "C = [\n";
+    for (int i = 0; i < 6; ++i) {
+      os << "  [";
+      for (int j = 0; j < 6; ++j)
+        os << (j ? ", " : "") << core::formatExact(m.C(i, j));
+      os << "],\n";
+    }
+    os << "]\n";
+    if (!m.plies.empty()) {
+      os << "plies = [\n";
+      for (const Ply& p : m.plies)
+        os << "  { material = " << quoteBasic(p.material)
+           << ", angle_deg = " << core::formatExact(p.angle_deg)
+           << ", thickness = " << core::formatExact(p.thickness) << " },\n";
+      os << "]\n";
+    }
+    if (!m.provenance.empty()) {
+      os << "\n[" << head << ".provenance]\n";
+      for (const auto& [k, v] : m.provenance)
+        os << key(std::string(k.str())) << " = " << value(v) << "\n";
+    }
+  }
+  return os.str();
+}
+
+std::vector<std::string> Library::names() const {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : entries_)
+    out.push_back(k);
+  return out;
+}
+
+const Material& Library::get(const std::string& name) const {
+  auto it = entries_.find(name);
+  if (it == entries_.end()) {
+    std::string list;
+    for (const auto& [k, v] : entries_)
+      list += (list.empty() ? "" : ", ") + k;
+    throw Error("no material '" + name + "' in library " + path_.string() + " (it holds: " +
+                    (list.empty() ? std::string("nothing") : list) + ")",
+                {"", 0, name});
+  }
+  return it->second;
+}
+
+void Library::add(const Material& m, bool overwrite) {
+  validate(m);
+  const core::FileLock lock(path_);
+  reload(); // another process may have added entries since we loaded
+  if (!overwrite && contains(m.name))
+    throw Error("material already in library " + path_.string() +
+                    " (remove it first or choose another name)",
+                {"", 0, m.name});
+  auto updated = entries_;
+  updated[m.name] = m;
+  const std::string text = serialize(updated);
+  parse(text, path_.string() + " (about to be written)"); // never write what we cannot read back
+  core::writeFileAtomically(path_, text);
+  entries_ = std::move(updated);
+}
+
+void Library::remove(const std::string& name) {
+  const core::FileLock lock(path_);
+  reload();
+  get(name); // error listing what the library holds
+  auto updated = entries_;
+  updated.erase(name);
+  core::writeFileAtomically(path_, serialize(updated));
+  entries_ = std::move(updated);
+}
+
+} // namespace lamina::materials

@@ -1,0 +1,68 @@
+#pragma once
+/// @file library.hpp
+/// @brief The materials library: one TOML text file of Material entries.
+///
+/// Format (see docs/library.md): a `[lamina]` header table with
+/// `format = "lamina-materials-library"` and `version = 1`, then one table
+/// `[materials."NAME"]` per entry with `kind`, `density`, `C` (6 rows of 6,
+/// Pa, lamina order, 17 significant digits), optional `thickness`, `plies`,
+/// `side_file` and a `provenance` sub-table.
+///
+/// Contract: add() and remove() take an exclusive lock on "<file>.lock",
+/// re-read the file, apply the change and replace the file atomically (write
+/// aside, fsync, rename). A failed or interrupted write leaves the previous
+/// file intact; concurrent writers serialize and all their entries land.
+/// Reading validates strictly: a file that is not a lamina library, an
+/// unknown key, a malformed or non-positive-definite entry is an error naming
+/// the file, the line and the key.
+
+#include "materials/material.hpp"
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lamina::materials {
+
+/// The library file and its entries (a snapshot taken at load time).
+class Library {
+public:
+  /// Environment variable naming the library file when --library is not given.
+  static constexpr const char* kEnvVar = "LAMINA_LIBRARY";
+
+  /// Resolves the library path: @p cli_path if non-empty, else $LAMINA_LIBRARY,
+  /// else $XDG_DATA_HOME/lamina/library.toml, else ~/.local/share/lamina/library.toml.
+  static std::filesystem::path resolvePath(const std::string& cli_path);
+
+  /// Loads @p path; a missing file is an empty library (created on first add).
+  explicit Library(std::filesystem::path path);
+
+  /// @return the file path
+  const std::filesystem::path& path() const { return path_; }
+  /// @return the entry names in sorted order
+  std::vector<std::string> names() const;
+  /// @return whether @p name is present
+  bool contains(const std::string& name) const { return entries_.count(name) > 0; }
+  /// @return the entry @p name; throws lamina::Error naming the library path
+  /// and listing what it holds when absent
+  const Material& get(const std::string& name) const;
+
+  /// Adds @p m (validated first) and writes the file. With @p overwrite false an
+  /// existing entry of the same name is an error and nothing is written.
+  void add(const Material& m, bool overwrite = false);
+  /// Removes entry @p name and writes the file; error if absent.
+  void remove(const std::string& name);
+
+  /// Serializes entries to the library's TOML text.
+  static std::string serialize(const std::map<std::string, Material>& entries);
+  /// Parses library text; @p source names it in errors.
+  static std::map<std::string, Material> parse(const std::string& text, const std::string& source);
+
+private:
+  void reload();
+  std::filesystem::path path_;
+  std::map<std::string, Material> entries_;
+};
+
+} // namespace lamina::materials

@@ -1,0 +1,39 @@
+#pragma once
+/// @file material.hpp
+/// @brief One entry of the materials library: stiffness, density, provenance.
+
+#include "materials/stiffness.hpp"
+
+#include <toml++/toml.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lamina::materials {
+
+/// One ply of a layup: a material, its angle about z and its thickness.
+struct Ply {
+  std::string material; ///< library or catalog name of the ply material
+  double angle_deg = 0; ///< rotation about z, degrees, counter-clockwise from x
+  double thickness = 0; ///< m, > 0
+};
+
+/// A material as the library stores it.
+struct Material {
+  std::string name;                ///< unique key in the library
+  Stiffness C;                     ///< 6x6, lamina order, Pa
+  double density = 0;              ///< kg/m^3, > 0
+  std::string kind = "catalog";    ///< "catalog", "homogenized", "layup" or "constants"
+  std::optional<double> thickness; ///< total thickness (m), layups only
+  std::vector<Ply> plies;          ///< the plies, layups only
+  std::string side_file;           ///< optional HDF5 side file with large arrays
+  toml::table provenance;          ///< what made it (free-form, written verbatim)
+};
+
+/// Throws lamina::Error naming the material unless C is symmetric positive
+/// definite, the density is finite and positive and the thickness (if any)
+/// is positive.
+void validate(const Material& m);
+
+} // namespace lamina::materials

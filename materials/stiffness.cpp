@@ -1,0 +1,162 @@
+#include "materials/stiffness.hpp"
+
+#include "core/error.hpp"
+#include "materials/conversions.hpp"
+
+#include <cmath>
+
+namespace lamina::materials {
+
+Stiffness Stiffness::isotropic(double E, double nu) {
+  LAMINA_CHECK(E > 0 && std::isfinite(E), "Young's modulus must be positive, got ", E);
+  LAMINA_CHECK(nu > -1.0 && nu < 0.5, "Poisson ratio must lie in (-1, 0.5), got ", nu);
+  const double lambda = E * nu / ((1 + nu) * (1 - 2 * nu));
+  const double mu = E / (2 * (1 + nu));
+  return fromLame(lambda, mu);
+}
+
+Stiffness Stiffness::fromLame(double lambda, double mu) {
+  LAMINA_CHECK(mu > 0 && 3 * lambda + 2 * mu > 0,
+               "Lame constants must give mu > 0 and a positive bulk modulus, got lambda = ",
+               lambda, ", mu = ", mu);
+  Matrix6 c = Matrix6::Zero();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j)
+      c(i, j) = lambda;
+    c(i, i) = lambda + 2 * mu;
+    c(3 + i, 3 + i) = mu; // engineering shear strain: tau = mu * gamma
+  }
+  return Stiffness(c);
+}
+
+Stiffness Stiffness::fromUpperTriangle(const std::array<double, 21>& v) {
+  Matrix6 c;
+  int k = 0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j) {
+      c(i, j) = v[static_cast<std::size_t>(k++)];
+      c(j, i) = c(i, j);
+    }
+  return Stiffness(c);
+}
+
+std::array<double, 21> Stiffness::upperTriangle() const {
+  std::array<double, 21> v{};
+  int k = 0;
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j)
+      v[static_cast<std::size_t>(k++)] = c_(i, j);
+  return v;
+}
+
+double Stiffness::asymmetry() const {
+  const double scale = c_.cwiseAbs().maxCoeff();
+  return scale > 0 ? (c_ - c_.transpose()).cwiseAbs().maxCoeff() / scale : 0.0;
+}
+
+Stiffness Stiffness::symmetrized() const { return Stiffness(0.5 * (c_ + c_.transpose())); }
+
+double Stiffness::smallestEigenvalue() const {
+  Eigen::SelfAdjointEigenSolver<Matrix6> es(0.5 * (c_ + c_.transpose()), Eigen::EigenvaluesOnly);
+  return es.eigenvalues()(0);
+}
+
+void Stiffness::validate(const std::string& name) const {
+  const ErrorContext ctx{"", 0, name};
+  if (!c_.allFinite())
+    throw Error("stiffness has NaN or infinite entries", ctx);
+  if (asymmetry() > 1e-10)
+    throw Error("stiffness is not symmetric (max |C - C^T| / max |C| = " +
+                    std::to_string(asymmetry()) + ")",
+                ctx);
+  Eigen::SelfAdjointEigenSolver<Matrix6> es(c_, Eigen::EigenvaluesOnly);
+  const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(5);
+  if (!(hi > 0) || lo <= 1e-12 * hi)
+    throw Error("stiffness is not positive definite (smallest eigenvalue " + std::to_string(lo) +
+                    " Pa, largest " + std::to_string(hi) + " Pa)",
+                ctx);
+}
+
+Matrix6 Stiffness::compliance() const { return c_.inverse(); }
+
+EngineeringConstants Stiffness::engineering() const {
+  const Matrix6 s = compliance();
+  EngineeringConstants e{};
+  e.E1 = 1 / s(0, 0);
+  e.E2 = 1 / s(1, 1);
+  e.E3 = 1 / s(2, 2);
+  e.G12 = 1 / s(3, 3);
+  e.G23 = 1 / s(4, 4);
+  e.G13 = 1 / s(5, 5);
+  e.nu12 = -s(1, 0) / s(0, 0);
+  e.nu13 = -s(2, 0) / s(0, 0);
+  e.nu23 = -s(2, 1) / s(1, 1);
+  e.nu21 = -s(0, 1) / s(1, 1);
+  e.nu31 = -s(0, 2) / s(2, 2);
+  e.nu32 = -s(1, 2) / s(2, 2);
+  return e;
+}
+
+Stiffness Stiffness::rotated(const Eigen::Matrix3d& R) const {
+  // In Mandel form the fourth-order rotation is an orthogonal 6x6 matrix Q:
+  // C'_M = Q C_M Q^T. Converting at this boundary keeps the algebra exact.
+  const Matrix6 q = mandelRotation(R);
+  return Stiffness(fromMandel(q * toMandel(c_) * q.transpose()));
+}
+
+Eigen::Matrix3d axisRotation(int axis, double radians) {
+  return Eigen::AngleAxisd(radians, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
+}
+
+Eigen::Matrix3d axisRotationDegrees(int axis, double degrees) {
+  // Multiples of 90 degrees get exact cosines and sines, so that [0/90]
+  // layups and 90-degree symmetry checks carry no 1e-16 residue.
+  const double quarterTurns = degrees / 90.0;
+  if (quarterTurns == std::round(quarterTurns)) {
+    const int k = ((static_cast<int>(std::round(quarterTurns)) % 4) + 4) % 4;
+    const double c[4] = {1, 0, -1, 0}, s[4] = {0, 1, 0, -1};
+    Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
+    const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+    r(a, a) = c[k];
+    r(a, b) = -s[k];
+    r(b, a) = s[k];
+    r(b, b) = c[k];
+    return r;
+  }
+  return axisRotation(axis, degrees * M_PI / 180.0);
+}
+
+Stiffness Stiffness::rotatedAboutZ(double radians) const { return rotated(axisRotation(2, radians)); }
+Stiffness Stiffness::rotatedAboutX(double radians) const { return rotated(axisRotation(0, radians)); }
+Stiffness Stiffness::rotatedAboutY(double radians) const { return rotated(axisRotation(1, radians)); }
+
+// Averages in engineering (Voigt-type) notation: indices 0-2 normal, 3-5 shear,
+// which holds in lamina order as in standard Voigt order.
+double voigtBulk(const Stiffness& c) {
+  const Matrix6& m = c.matrix();
+  return ((m(0, 0) + m(1, 1) + m(2, 2)) + 2 * (m(0, 1) + m(1, 2) + m(0, 2))) / 9.0;
+}
+
+double voigtShear(const Stiffness& c) {
+  const Matrix6& m = c.matrix();
+  return ((m(0, 0) + m(1, 1) + m(2, 2)) - (m(0, 1) + m(1, 2) + m(0, 2)) +
+          3 * (m(3, 3) + m(4, 4) + m(5, 5))) /
+         15.0;
+}
+
+double reussBulk(const Stiffness& c) {
+  const Matrix6 s = c.compliance();
+  return 1.0 / ((s(0, 0) + s(1, 1) + s(2, 2)) + 2 * (s(0, 1) + s(1, 2) + s(0, 2)));
+}
+
+double reussShear(const Stiffness& c) {
+  const Matrix6 s = c.compliance();
+  return 15.0 / (4 * (s(0, 0) + s(1, 1) + s(2, 2)) - 4 * (s(0, 1) + s(1, 2) + s(0, 2)) +
+                 3 * (s(3, 3) + s(4, 4) + s(5, 5)));
+}
+
+double anisotropyIndex(const Stiffness& c) {
+  return 5 * voigtShear(c) / reussShear(c) + voigtBulk(c) / reussBulk(c) - 6;
+}
+
+} // namespace lamina::materials
