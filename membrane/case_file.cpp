@@ -1,0 +1,587 @@
+#include "membrane/case_file.hpp"
+
+#include "core/error.hpp"
+#include "core/toml_reader.hpp"
+#include "materials/catalog.hpp"
+#include "materials/layup.hpp"
+#include "materials/library.hpp"
+
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <set>
+
+namespace lamina::membrane {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Lazily opened material sources (a case with inline materials needs neither).
+class MaterialResolver {
+public:
+  explicit MaterialResolver(const MaterialSources& s) : sources_(s) {}
+
+  materials::Material get(const std::string& name, const core::TableReader& r,
+                          const std::string& key) {
+    auto& lib = library();
+    if (lib.contains(name)) return lib.get(name);
+    auto* cat = catalog();
+    if (cat && cat->contains(name)) return cat->get(name).toMaterial();
+    std::string have;
+    for (const auto& n : lib.names()) have += (have.empty() ? "" : ", ") + n;
+    std::string cat_have;
+    if (cat)
+      for (const auto& n : cat->names()) cat_have += (cat_have.empty() ? "" : ", ") + n;
+    r.fail(key, "unknown material '" + name + "': library " + lib.path().string() + " has [" +
+                    have + "]" + (cat ? "; catalog has [" + cat_have + "]" : ""));
+  }
+
+private:
+  materials::Library& library() {
+    if (!library_)
+      library_ = std::make_unique<materials::Library>(
+          materials::Library::resolvePath(sources_.library_path));
+    return *library_;
+  }
+  materials::Catalog* catalog() {
+    if (!catalog_tried_) {
+      catalog_tried_ = true;
+      const auto p = sources_.catalog_path.empty() ? materials::Catalog::defaultPath()
+                                                   : std::filesystem::path(sources_.catalog_path);
+      if (std::filesystem::exists(p)) catalog_ = std::make_unique<materials::Catalog>(p);
+    }
+    return catalog_.get();
+  }
+  MaterialSources sources_;
+  std::unique_ptr<materials::Library> library_;
+  std::unique_ptr<materials::Catalog> catalog_;
+  bool catalog_tried_ = false;
+};
+
+Eigen::Vector2d readPoint(const core::TableReader& r, const std::string& key) {
+  const auto v = r.getDoubleArray(key);
+  if (v.size() != 2) r.fail(key, "expected [x, y]");
+  return {v[0], v[1]};
+}
+
+Eigen::Vector3d readDirection(const core::TableReader& r, const Eigen::Vector3d& fallback) {
+  if (r.has("direction") && r.has("inclination_deg"))
+    r.fail("direction", "give either direction or inclination_deg, not both");
+  if (r.has("direction")) {
+    const auto v = r.getDoubleArray("direction");
+    if (v.size() != 3) r.fail("direction", "expected [dx, dy, dz]");
+    Eigen::Vector3d d(v[0], v[1], v[2]);
+    if (!(d.norm() > 0)) r.fail("direction", "direction must be non-zero");
+    return d.normalized();
+  }
+  if (r.has("inclination_deg")) {
+    // Tilted from the normal +z towards +x (Table 2 cases 2 and 4: 30 degrees).
+    const double a = r.getDouble("inclination_deg") * kPi / 180;
+    return {std::sin(a), 0.0, std::cos(a)};
+  }
+  return fallback;
+}
+
+/// The one selector key of a table: nodes (set name), box, at, region or all.
+struct Selector {
+  std::string kind; // "nodes", "box", "at", "region", "all"
+  std::string name;
+  std::array<double, 4> box{};
+  Eigen::Vector2d at = Eigen::Vector2d::Zero();
+  std::string key; // the key that selected, for errors
+};
+
+Selector readSelector(const core::TableReader& r) {
+  Selector s;
+  int count = 0;
+  for (const char* k : {"nodes", "box", "at", "region", "all"})
+    if (r.has(k)) ++count;
+  if (count != 1) r.failHere("give exactly one of nodes, box, at, region, all");
+  if (r.has("nodes")) {
+    s.kind = s.key = "nodes";
+    s.name = r.getString("nodes");
+  } else if (r.has("box")) {
+    s.kind = s.key = "box";
+    const auto v = r.getDoubleArray("box");
+    if (v.size() != 4 || !(v[0] <= v[1]) || !(v[2] <= v[3]))
+      r.fail("box", "expected [xmin, xmax, ymin, ymax]");
+    std::copy(v.begin(), v.end(), s.box.begin());
+  } else if (r.has("at")) {
+    s.kind = s.key = "at";
+    s.at = readPoint(r, "at");
+  } else if (r.has("region")) {
+    s.kind = s.key = "region";
+    s.name = r.getString("region");
+  } else {
+    s.kind = s.key = "all";
+    if (!r.getBool("all", false)) r.fail("all", "all = false selects nothing");
+  }
+  return s;
+}
+
+int regionIndex(const Mesh& m, const std::string& name, const core::TableReader& r,
+                const std::string& key) {
+  for (size_t i = 0; i < m.regions.size(); ++i)
+    if (m.regions[i] == name) return static_cast<int>(i);
+  std::string have;
+  for (const auto& n : m.regions) have += (have.empty() ? "" : ", ") + n;
+  r.fail(key, "mesh " + m.source + " has no region '" + name + "' (regions: " + have + ")");
+}
+
+bool inBox(const Eigen::Vector2d& p, const std::array<double, 4>& b, double tol) {
+  return p.x() >= b[0] - tol && p.x() <= b[1] + tol && p.y() >= b[2] - tol && p.y() <= b[3] + tol;
+}
+
+std::vector<int> selectNodes(const Mesh& m, const Selector& s, const core::TableReader& r) {
+  std::vector<int> out;
+  const double tol = 1e-9 * m.maxEdge();
+  if (s.kind == "nodes") {
+    auto it = m.node_sets.find(s.name);
+    if (it == m.node_sets.end()) {
+      std::string have;
+      for (const auto& [n, v] : m.node_sets) have += (have.empty() ? "" : ", ") + n;
+      r.fail("nodes", "mesh " + m.source + " has no node set '" + s.name + "' (sets: " + have +
+                          ")");
+    }
+    out = it->second;
+  } else if (s.kind == "box") {
+    for (int i = 0; i < m.numNodes(); ++i)
+      if (inBox(m.nodes[i], s.box, tol)) out.push_back(i);
+  } else if (s.kind == "at") {
+    out.push_back(m.nearestNode(s.at));
+  } else if (s.kind == "region") {
+    const int reg = regionIndex(m, s.name, r, "region");
+    std::set<int> nodes;
+    for (int e = 0; e < m.numElements(); ++e)
+      if (m.region_of[e] == reg) nodes.insert(m.triangles[e].begin(), m.triangles[e].end());
+    out.assign(nodes.begin(), nodes.end());
+  } else {
+    for (int i = 0; i < m.numNodes(); ++i) out.push_back(i);
+  }
+  if (out.empty()) r.fail(s.key, "selects no node of mesh " + m.source);
+  return out;
+}
+
+std::vector<int> selectElements(const Mesh& m, const Selector& s, const core::TableReader& r) {
+  std::vector<int> out;
+  const double tol = 1e-9 * m.maxEdge();
+  if (s.kind == "nodes") {
+    r.fail("nodes", "this load acts on elements: select them with box, at, region or all");
+  } else if (s.kind == "box") {
+    for (int e = 0; e < m.numElements(); ++e)
+      if (inBox(m.centroid(e), s.box, tol)) out.push_back(e);
+  } else if (s.kind == "at") {
+    // The triangle containing the point (barycentric test).
+    for (int e = 0; e < m.numElements() && out.empty(); ++e) {
+      const auto& t = m.triangles[e];
+      const Eigen::Vector2d a = m.nodes[t[0]], b = m.nodes[t[1]], c = m.nodes[t[2]];
+      auto cross = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
+        return p.x() * q.y() - p.y() * q.x();
+      };
+      const double A2 = cross(b - a, c - a), eps = -1e-12 * A2;
+      if (cross(b - a, s.at - a) >= eps && cross(c - b, s.at - b) >= eps &&
+          cross(a - c, s.at - c) >= eps)
+        out.push_back(e);
+    }
+  } else if (s.kind == "region") {
+    const int reg = regionIndex(m, s.name, r, "region");
+    for (int e = 0; e < m.numElements(); ++e)
+      if (m.region_of[e] == reg) out.push_back(e);
+  } else {
+    for (int e = 0; e < m.numElements(); ++e) out.push_back(e);
+  }
+  if (out.empty()) r.fail(s.key, "selects no element of mesh " + m.source);
+  return out;
+}
+
+Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path) {
+  const std::string type = r.getString("type", "rectangle");
+  if (type == "rectangle") {
+    const double Lx = r.getDouble("Lx");
+    const double Ly = r.getDouble("Ly", Lx);
+    const auto nx = r.getInt("nx");
+    const auto ny = r.getInt("ny", nx);
+    if (!(Lx > 0)) r.fail("Lx", "must be > 0");
+    if (!(Ly > 0)) r.fail("Ly", "must be > 0");
+    if (nx < 1 || nx > 100000) r.fail("nx", "must be in [1, 100000]");
+    if (ny < 1 || ny > 100000) r.fail("ny", "must be in [1, 100000]");
+    return structuredRectangle(Lx, Ly, static_cast<int>(nx), static_cast<int>(ny));
+  }
+  if (type == "gmsh") {
+    std::filesystem::path file = r.getString("file");
+    if (file.is_relative()) file = case_path.parent_path() / file;
+    if (!std::filesystem::exists(file)) r.fail("file", "mesh file not found: " + file.string());
+    return readGmsh(file);
+  }
+  r.fail("type", "unknown mesh type '" + type + "' (rectangle, gmsh)");
+}
+
+/// Reads one [[section]]: material by name, inline isotropic/anisotropic, or plies.
+Section readSection(const core::TableReader& r, MaterialResolver& res) {
+  Section s;
+  std::optional<double> default_thickness;
+  const bool by_name = r.has("material"), iso = r.has("E"), aniso = r.has("C"),
+             layup = r.has("plies");
+  if (by_name + iso + aniso + layup != 1)
+    r.failHere("give exactly one of material, E (with nu, density), C (with density), plies");
+  if (by_name) {
+    s.material = r.getString("material");
+    const auto m = res.get(s.material, r, "material");
+    s.D = m.C.matrix();
+    s.density = m.density;
+    default_thickness = m.thickness;
+  } else if (iso) {
+    const double E = r.getDouble("E"), nu = r.getDouble("nu");
+    if (!(E > 0)) r.fail("E", "must be > 0");
+    if (!(nu > -1 && nu < 0.5)) r.fail("nu", "must be in (-1, 0.5)");
+    s.D = materials::Stiffness::isotropic(E, nu).matrix();
+    s.density = r.getDouble("density");
+    s.material = "isotropic E=" + std::to_string(E) + " nu=" + std::to_string(nu);
+  } else if (aniso) {
+    const auto C = r.getMatrix("C");
+    if (C.size() != 6) r.fail("C", "expected 6 rows of 6 (Pa, lamina order)");
+    for (int i = 0; i < 6; ++i) {
+      if (C[i].size() != 6) r.fail("C", "expected 6 rows of 6 (Pa, lamina order)");
+      for (int j = 0; j < 6; ++j) s.D(i, j) = C[i][j];
+    }
+    s.density = r.getDouble("density");
+    s.material = "inline C";
+  } else {
+    const auto texts = r.getStringArray("plies");
+    std::vector<materials::Ply> plies;
+    for (const auto& t : texts) {
+      try {
+        plies.push_back(materials::parsePly(t));
+      } catch (const Error& e) {
+        r.fail("plies", e.message());
+      }
+    }
+    materials::Material m;
+    try {
+      m = materials::makeLayup("case layup", plies, [&](const std::string& n) {
+        return res.get(n, r, "plies");
+      });
+    } catch (const Error& e) {
+      if (!e.context().file.empty()) throw;
+      r.fail("plies", e.message());
+    }
+    s.D = m.C.matrix();
+    s.density = m.density;
+    default_thickness = m.thickness;
+    s.material = "layup of " + std::to_string(plies.size()) + " plies";
+  }
+  if (r.has("thickness") || !default_thickness) {
+    s.thickness = r.getDouble("thickness");
+    if (!(s.thickness > 0)) r.fail("thickness", "thickness must be > 0");
+  } else {
+    s.thickness = *default_thickness;
+  }
+  if (!(s.density > 0) || !std::isfinite(s.density))
+    r.failHere("density must be finite and > 0");
+  try {
+    materials::Stiffness(s.D).validate(s.material);
+  } catch (const Error& e) {
+    r.failHere(e.message());
+  }
+  return s;
+}
+
+/// Consistent nodal forces of a traction b(x, y) (N/m^2) on the elements,
+/// integrated with the 3-point edge-midpoint rule (exact for quadratics).
+template <typename F>
+void addTraction(const Mesh& m, const std::vector<int>& elems, const Eigen::Vector3d& dir,
+                 F&& traction, Eigen::VectorXd& f) {
+  for (int e : elems) {
+    const auto& t = m.triangles[e];
+    const double A = m.area(e);
+    for (int q = 0; q < 3; ++q) {
+      // Midpoint of edge (q, q+1): N_q = N_{q+1} = 1/2, the third is 0.
+      const Eigen::Vector2d p = 0.5 * (m.nodes[t[q]] + m.nodes[t[(q + 1) % 3]]);
+      const double w = A / 3 * traction(p);
+      for (int k : {q, (q + 1) % 3})
+        for (int c = 0; c < 3; ++c) f[3 * t[k] + c] += 0.5 * w * dir[c];
+    }
+  }
+}
+
+} // namespace
+
+toml::table loadCaseDocument(const std::filesystem::path& path,
+                             const std::vector<std::string>& overrides) {
+  if (!std::filesystem::exists(path))
+    throw Error("case file not found", ErrorContext{path.string(), 0, ""});
+  toml::table doc = core::parseTomlFile(path);
+  for (const auto& o : overrides) core::applyOverride(doc, o);
+  return doc;
+}
+
+Model buildModel(const toml::table& doc, const std::filesystem::path& path,
+                 const MaterialSources& sources) {
+  core::TableReader root(doc, path.string());
+  Model model;
+  model.name = root.getString("name", path.stem().string());
+  (void)root.getString("description", "");
+
+  model.mesh = readMesh(root.table("mesh"), path);
+  const Mesh& mesh = model.mesh;
+  const int n = mesh.numNodes();
+  const int ndof = 3 * n;
+
+  // Sections: one per region; a section without `region` covers every region left.
+  MaterialResolver resolver(sources);
+  model.sections.assign(mesh.regions.size(), Section{});
+  std::vector<bool> assigned(mesh.regions.size(), false);
+  const auto sections = root.tableArray("section");
+  if (sections.empty()) root.fail("section", "at least one [[section]] is required");
+  for (const auto& sr : sections) {
+    const Section s = readSection(sr, resolver);
+    if (sr.has("region")) {
+      const int reg = regionIndex(mesh, sr.getString("region"), sr, "region");
+      if (assigned[reg]) sr.fail("region", "region '" + mesh.regions[reg] + "' assigned twice");
+      model.sections[reg] = s;
+      model.sections[reg].name = mesh.regions[reg];
+      assigned[reg] = true;
+    } else {
+      for (size_t g = 0; g < assigned.size(); ++g)
+        if (!assigned[g]) {
+          model.sections[g] = s;
+          model.sections[g].name = mesh.regions[g];
+          assigned[g] = true;
+        }
+    }
+  }
+  for (size_t g = 0; g < assigned.size(); ++g)
+    if (!assigned[g]) root.fail("section", "mesh region '" + mesh.regions[g] + "' has no section");
+
+  // Time and solver.
+  {
+    const auto t = root.table("time");
+    auto& ts = model.time;
+    ts.dt = t.getDouble("dt");
+    if (!(ts.dt > 0) || !std::isfinite(ts.dt)) t.fail("dt", "time step dt must be > 0");
+    ts.t_end = t.getDouble("t_end");
+    if (!(ts.t_end > 0)) t.fail("t_end", "t_end must be > 0");
+    ts.beta1 = t.getDouble("beta1", 0.5);
+    ts.beta2 = t.getDouble("beta2", 0.5);
+    if (ts.beta1 < 0 || ts.beta1 > 1) t.fail("beta1", "must be in [0, 1]");
+    if (ts.beta2 < 0 || ts.beta2 > 1) t.fail("beta2", "must be in [0, 1]");
+    ts.hht_alpha = t.getDouble("hht_alpha", 0.0);
+    if (ts.hht_alpha < -1.0 / 3 || ts.hht_alpha > 0)
+      t.fail("hht_alpha", "HHT alpha must be in [-1/3, 0]");
+    if (ts.hht_alpha != 0 && (t.has("beta1") || t.has("beta2")))
+      t.fail("hht_alpha", "with hht_alpha, beta1 and beta2 follow from alpha: do not give them");
+    if (ts.hht_alpha != 0) {
+      ts.beta1 = 0.5 - ts.hht_alpha;
+      ts.beta2 = 0.5 * (1 - ts.hht_alpha) * (1 - ts.hht_alpha);
+    }
+    const std::string mass = t.getString("mass", "consistent");
+    if (mass != "consistent" && mass != "lumped")
+      t.fail("mass", "mass must be \"consistent\" or \"lumped\"");
+    ts.lumped = mass == "lumped";
+  }
+  if (auto s = root.optionalTable("solver")) {
+    auto& ts = model.time;
+    ts.solver = s->getString("type", "cg");
+    if (ts.solver != "cg" && ts.solver != "cholesky")
+      s->fail("type", "solver type must be \"cg\" or \"cholesky\"");
+    ts.tolerance = s->getDouble("tolerance", ts.tolerance);
+    if (!(ts.tolerance > 0 && ts.tolerance < 1)) s->fail("tolerance", "must be in (0, 1)");
+    ts.max_iterations = static_cast<int>(s->getInt("max_iterations", ts.max_iterations));
+    if (ts.max_iterations < 1) s->fail("max_iterations", "must be >= 1");
+    ts.drag_iterations = static_cast<int>(s->getInt("drag_iterations", ts.drag_iterations));
+    if (ts.drag_iterations < 1) s->fail("drag_iterations", "must be >= 1");
+    ts.drag_tolerance = s->getDouble("drag_tolerance", ts.drag_tolerance);
+  }
+  if (auto o = root.optionalTable("output")) {
+    model.output.field_every = static_cast<int>(o->getInt("field_every", 10));
+    model.output.energy_every = static_cast<int>(o->getInt("energy_every", 1));
+    model.output.fields = o->getBool("fields", true);
+    if (model.output.field_every < 0) o->fail("field_every", "must be >= 0");
+    if (model.output.energy_every < 1) o->fail("energy_every", "must be >= 1");
+  }
+
+  // Constraints: [[fixed]] and [[strike]].
+  std::vector<int> owner(ndof, -1);
+  auto addConstraint = [&](const core::TableReader& r, Constraint c, const std::vector<int>& nodes,
+                           const std::string& comps, const Eigen::Vector3d& vel) {
+    for (char ch : comps)
+      if (ch != 'x' && ch != 'y' && ch != 'z')
+        r.fail("components", "components is a subset of \"xyz\"");
+    for (int node : nodes)
+      for (int comp = 0; comp < 3; ++comp) {
+        if (comps.find("xyz"[comp]) == std::string::npos) continue;
+        const int dof = 3 * node + comp;
+        if (owner[dof] >= 0)
+          r.failHere("node " + std::to_string(node) + " is already constrained by '" +
+                     model.constraints[owner[dof]].name + "'");
+        owner[dof] = static_cast<int>(model.constraints.size());
+        c.dofs.push_back(dof);
+        c.amplitude.push_back(vel[comp]);
+      }
+    model.constraints.push_back(std::move(c));
+  };
+  for (const auto& r : root.tableArray("fixed")) {
+    const Selector sel = readSelector(r);
+    Constraint c;
+    c.name = r.getString("name", sel.kind == "nodes" ? sel.name
+                                                     : "fixed" + std::to_string(model.constraints.size()));
+    addConstraint(r, std::move(c), selectNodes(mesh, sel, r), r.getString("components", "xyz"),
+                  Eigen::Vector3d::Zero());
+  }
+  for (const auto& r : root.tableArray("strike")) {
+    const Selector sel = readSelector(r);
+    Constraint c;
+    c.name = r.getString("name", "strike");
+    const double speed = r.getDouble("speed");
+    const Eigen::Vector3d dir = readDirection(r, Eigen::Vector3d::UnitZ());
+    c.profile = TimeProfile::read(r);
+    addConstraint(r, std::move(c), selectNodes(mesh, sel, r), "xyz", speed * dir);
+  }
+
+  // Loads.
+  const auto [xmin, xmax, ymin, ymax] = mesh.bounds();
+  for (const auto& r : root.tableArray("load")) {
+    Load load;
+    const std::string type = r.getString("type");
+    load.name = r.getString("name", type + std::to_string(model.loads.size()));
+    load.pattern = Eigen::VectorXd::Zero(ndof);
+    if (type == "force") {
+      const double value = r.getDouble("value");
+      const Eigen::Vector3d dir = readDirection(r, Eigen::Vector3d::UnitZ());
+      const std::string target = r.getString("target", "elements");
+      const Selector sel = readSelector(r);
+      if (target == "elements") {
+        // Total force spread uniformly over the selected area (eq. 25 with b = F/A).
+        const auto elems = selectElements(mesh, sel, r);
+        double area = 0;
+        for (int e : elems) area += mesh.area(e);
+        addTraction(mesh, elems, dir, [&](const Eigen::Vector2d&) { return value / area; },
+                    load.pattern);
+      } else if (target == "nodes") {
+        const auto nodes = selectNodes(mesh, sel, r);
+        for (int node : nodes)
+          for (int c = 0; c < 3; ++c)
+            load.pattern[3 * node + c] += value * dir[c] / static_cast<double>(nodes.size());
+      } else {
+        r.fail("target", "target must be \"elements\" or \"nodes\"");
+      }
+    } else if (type == "pressure") {
+      const double p = r.getDouble("value");
+      const auto elems = r.has("nodes") || r.has("box") || r.has("at") || r.has("region") ||
+                                 r.has("all")
+                             ? selectElements(mesh, readSelector(r), r)
+                             : selectElements(mesh, Selector{"all", "", {}, {}, "all"}, r);
+      addTraction(mesh, elems, Eigen::Vector3d::UnitZ(),
+                  [&](const Eigen::Vector2d&) { return p; }, load.pattern);
+    } else if (type == "distributed") {
+      // eq. (31): b = b0 cos^2(pi r / (2 L)) for r <= L, normal to the membrane,
+      // r measured from the centre; b0 is a force per volume (N/m^3) as in the paper.
+      const double b0 = r.getDouble("b0");
+      const double L = r.getDouble("L", std::max(xmax - xmin, ymax - ymin));
+      if (!(L > 0)) r.fail("L", "must be > 0");
+      Eigen::Vector2d c(0.5 * (xmin + xmax), 0.5 * (ymin + ymax));
+      if (r.has("centre")) c = readPoint(r, "centre");
+      // times the thickness of each element's section (b is per volume)
+      Eigen::VectorXd scaled = Eigen::VectorXd::Zero(ndof);
+      for (int e = 0; e < mesh.numElements(); ++e) {
+        const double h = model.sections[mesh.region_of[e]].thickness;
+        std::vector<int> one{e};
+        addTraction(mesh, one, Eigen::Vector3d::UnitZ(),
+                    [&](const Eigen::Vector2d& p) {
+                      const double rr = (p - c).norm();
+                      const double cs = std::cos(kPi * rr / (2 * L));
+                      return rr <= L ? h * b0 * cs * cs : 0.0;
+                    },
+                    scaled);
+      }
+      load.pattern = scaled;
+    } else {
+      r.fail("type", "unknown load type '" + type + "' (force, pressure, distributed)");
+    }
+    load.profile = TimeProfile::read(r);
+    model.loads.push_back(std::move(load));
+  }
+
+  // Point masses (drag paper section 4.2: the suspended mass).
+  for (const auto& r : root.tableArray("point_mass")) {
+    const double m = r.getDouble("mass");
+    if (!(m > 0)) r.fail("mass", "point mass must be > 0");
+    model.point_masses.emplace_back(mesh.nearestNode(readPoint(r, "at")), m);
+  }
+
+  // Gravity: body force rho h g (consistent = lumped row sums) plus the point masses.
+  if (auto g = root.optionalTable("gravity")) {
+    const auto gv = g->getDoubleArray("g");
+    if (gv.size() != 3) g->fail("g", "expected [gx, gy, gz] (m/s^2)");
+    Load load;
+    load.name = "gravity";
+    load.pattern = Eigen::VectorXd::Zero(ndof);
+    for (int e = 0; e < mesh.numElements(); ++e) {
+      const auto& s = model.sections[mesh.region_of[e]];
+      const double m3 = s.density * s.thickness * mesh.area(e) / 3;
+      for (int node : mesh.triangles[e])
+        for (int c = 0; c < 3; ++c) load.pattern[3 * node + c] += m3 * gv[c];
+    }
+    for (const auto& [node, m] : model.point_masses)
+      for (int c = 0; c < 3; ++c) load.pattern[3 * node + c] += m * gv[c];
+    model.loads.push_back(std::move(load));
+  }
+
+  // Drag on surface regions (issue 5).
+  for (const auto& r : root.tableArray("drag")) {
+    Drag d;
+    const Selector sel = r.has("region") ? readSelector(r) : Selector{"all", "", {}, {}, "all"};
+    if (sel.kind != "region" && sel.kind != "all")
+      r.failHere("drag acts on a surface region: give region = NAME (or nothing for all)");
+    std::vector<double> area(n, 0.0);
+    const auto elems = selectElements(mesh, sel, r);
+    for (int e : elems)
+      for (int node : mesh.triangles[e]) area[node] += mesh.area(e) / 3;
+    for (int i = 0; i < n; ++i)
+      if (area[i] > 0) {
+        d.nodes.push_back(i);
+        d.area.push_back(area[i]);
+      }
+    d.cd = r.getDouble("cd");
+    if (!(d.cd > 0)) r.fail("cd", "drag coefficient must be > 0");
+    d.fluid_density = r.getDouble("fluid_density", 1.225);
+    if (!(d.fluid_density > 0)) r.fail("fluid_density", "must be > 0");
+    const std::string measure = r.getString("velocity", "normal");
+    if (measure != "normal" && measure != "resultant")
+      r.fail("velocity", "velocity must be \"normal\" or \"resultant\"");
+    d.resultant = measure == "resultant";
+    model.drags.push_back(std::move(d));
+  }
+
+  // Initial state: uniform initial velocity (optional).
+  if (auto ini = root.optionalTable("initial")) {
+    const auto v = ini->getDoubleArray("velocity");
+    if (v.size() != 3) ini->fail("velocity", "expected [vx, vy, vz]");
+    model.v0 = Eigen::VectorXd::Zero(ndof);
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) model.v0[3 * i + c] = v[c];
+  }
+
+  // Probes.
+  std::set<std::string> names;
+  for (const auto& r : root.tableArray("probe")) {
+    Probe p;
+    p.name = r.getString("name");
+    if (p.name.empty() || p.name.find_first_of(",\" ") != std::string::npos)
+      r.fail("name", "probe name must be non-empty without commas, quotes or spaces");
+    if (!names.insert(p.name).second) r.fail("name", "duplicate probe '" + p.name + "'");
+    p.node = mesh.nearestNode(readPoint(r, "at"));
+    model.probes.push_back(p);
+  }
+
+  root.finish();
+  return model;
+}
+
+Model readCase(const std::filesystem::path& path, const std::vector<std::string>& overrides,
+               const MaterialSources& sources) {
+  return buildModel(loadCaseDocument(path, overrides), path, sources);
+}
+
+} // namespace lamina::membrane

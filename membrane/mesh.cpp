@@ -1,0 +1,238 @@
+#include "membrane/mesh.hpp"
+
+#include "core/error.hpp"
+
+#include <gmsh.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <mutex>
+#include <unordered_map>
+
+namespace lamina::membrane {
+
+double Mesh::area(int e) const {
+  const auto& t = triangles[e];
+  const Eigen::Vector2d a = nodes[t[1]] - nodes[t[0]], b = nodes[t[2]] - nodes[t[0]];
+  return 0.5 * (a.x() * b.y() - a.y() * b.x());
+}
+
+Eigen::Vector2d Mesh::centroid(int e) const {
+  const auto& t = triangles[e];
+  return (nodes[t[0]] + nodes[t[1]] + nodes[t[2]]) / 3.0;
+}
+
+int Mesh::nearestNode(const Eigen::Vector2d& p) const {
+  int best = -1;
+  double d = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < numNodes(); ++i) {
+    const double di = (nodes[i] - p).squaredNorm();
+    if (di < d * (1 - 1e-12)) { // ties (symmetric grids) go to the lowest index
+      d = di;
+      best = i;
+    }
+  }
+  return best;
+}
+
+std::array<double, 4> Mesh::bounds() const {
+  std::array<double, 4> b{std::numeric_limits<double>::infinity(),
+                          -std::numeric_limits<double>::infinity(),
+                          std::numeric_limits<double>::infinity(),
+                          -std::numeric_limits<double>::infinity()};
+  for (const auto& p : nodes) {
+    b[0] = std::min(b[0], p.x());
+    b[1] = std::max(b[1], p.x());
+    b[2] = std::min(b[2], p.y());
+    b[3] = std::max(b[3], p.y());
+  }
+  return b;
+}
+
+double Mesh::maxEdge() const {
+  double h = 0;
+  for (const auto& t : triangles)
+    for (int k = 0; k < 3; ++k) h = std::max(h, (nodes[t[k]] - nodes[t[(k + 1) % 3]]).norm());
+  return h;
+}
+
+void finalizeMesh(Mesh& mesh) {
+  LAMINA_CHECK(!mesh.triangles.empty(), mesh.source, ": mesh has no triangles");
+  LAMINA_CHECK(mesh.region_of.size() == mesh.triangles.size(), mesh.source,
+               ": region list does not match the triangles");
+  const int n = mesh.numNodes();
+  for (int e = 0; e < mesh.numElements(); ++e) {
+    auto& t = mesh.triangles[e];
+    for (int k = 0; k < 3; ++k)
+      LAMINA_CHECK(t[k] >= 0 && t[k] < n, mesh.source, ": triangle ", e,
+                   " refers to a missing node");
+    LAMINA_CHECK(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], mesh.source, ": triangle ", e,
+                 " repeats a node");
+    if (mesh.area(e) < 0) std::swap(t[1], t[2]);
+    // Degenerate: area tiny compared with the square of its longest edge.
+    double l2 = 0;
+    for (int k = 0; k < 3; ++k)
+      l2 = std::max(l2, (mesh.nodes[t[k]] - mesh.nodes[t[(k + 1) % 3]]).squaredNorm());
+    LAMINA_CHECK(mesh.area(e) > 1e-12 * l2, mesh.source, ": triangle ", e,
+                 " is degenerate (zero area)");
+  }
+  for (auto& [name, set] : mesh.node_sets) {
+    std::sort(set.begin(), set.end());
+    set.erase(std::unique(set.begin(), set.end()), set.end());
+  }
+}
+
+Mesh structuredRectangle(double Lx, double Ly, int nx, int ny) {
+  LAMINA_CHECK(Lx > 0 && Ly > 0, "structured mesh: lengths must be positive");
+  LAMINA_CHECK(nx >= 1 && ny >= 1, "structured mesh: nx and ny must be >= 1");
+  Mesh m;
+  m.source = "structured";
+  const int nxp = nx + 1;
+  m.nodes.reserve(static_cast<size_t>(nxp) * (ny + 1));
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) m.nodes.emplace_back(Lx * i / nx, Ly * j / ny);
+  auto id = [nxp](int i, int j) { return j * nxp + i; };
+  m.triangles.reserve(2 * static_cast<size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      // Square split by the diagonal (i,j)-(i+1,j+1), as in the paper's grid.
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  m.region_of.assign(m.triangles.size(), 0);
+  m.regions = {"all"};
+  auto& left = m.node_sets["left"];
+  auto& right = m.node_sets["right"];
+  auto& bottom = m.node_sets["bottom"];
+  auto& top = m.node_sets["top"];
+  for (int j = 0; j <= ny; ++j) {
+    left.push_back(id(0, j));
+    right.push_back(id(nx, j));
+  }
+  for (int i = 0; i <= nx; ++i) {
+    bottom.push_back(id(i, 0));
+    top.push_back(id(i, ny));
+  }
+  auto& edges = m.node_sets["edges"];
+  for (const auto* s : {&left, &right, &bottom, &top}) edges.insert(edges.end(), s->begin(), s->end());
+  finalizeMesh(m);
+  return m;
+}
+
+namespace {
+/// gmsh keeps global state: one reader at a time.
+std::mutex gmsh_mutex;
+
+struct GmshSession {
+  GmshSession() {
+    gmsh::initialize(0, nullptr, false);
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::option::setNumber("General.Verbosity", 0);
+  }
+  ~GmshSession() { gmsh::finalize(); }
+};
+} // namespace
+
+Mesh readGmsh(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  if (!std::filesystem::exists(path))
+    throw Error("mesh file not found", ErrorContext{file, 0, ""});
+  const std::string ext = path.extension().string();
+  if (ext != ".msh" && ext != ".geo")
+    throw Error("mesh file must be .msh or .geo, got '" + ext + "'", ErrorContext{file, 0, ""});
+
+  std::lock_guard<std::mutex> lock(gmsh_mutex);
+  GmshSession session;
+  Mesh m;
+  m.source = file;
+  try {
+    gmsh::open(file);
+    if (ext == ".geo") gmsh::model::mesh::generate(2);
+
+    std::vector<std::size_t> tags;
+    std::vector<double> coord, param;
+    gmsh::model::mesh::getNodes(tags, coord, param, -1, -1, true, false);
+    std::unordered_map<std::size_t, int> index;
+    index.reserve(tags.size());
+    for (std::size_t k = 0; k < tags.size(); ++k) {
+      if (index.count(tags[k])) continue;
+      index[tags[k]] = static_cast<int>(m.nodes.size());
+      m.nodes.emplace_back(coord[3 * k], coord[3 * k + 1]);
+      if (std::abs(coord[3 * k + 2]) > 1e-12 * (1 + std::abs(coord[3 * k])))
+        throw Error("node " + std::to_string(tags[k]) + " is not in the z = 0 plane",
+                    ErrorContext{file, 0, ""});
+    }
+
+    // Regions: physical surfaces; a surface entity without one falls in "all".
+    gmsh::vectorpair surfaces;
+    gmsh::model::getEntities(surfaces, 2);
+    std::map<int, int> region_of_entity;
+    gmsh::vectorpair groups;
+    gmsh::model::getPhysicalGroups(groups, 2);
+    for (const auto& [dim, tag] : groups) {
+      std::string name;
+      gmsh::model::getPhysicalName(dim, tag, name);
+      if (name.empty()) name = std::to_string(tag);
+      std::vector<int> ents;
+      gmsh::model::getEntitiesForPhysicalGroup(dim, tag, ents);
+      const int r = static_cast<int>(m.regions.size());
+      m.regions.push_back(name);
+      for (int ent : ents) region_of_entity[ent] = r;
+    }
+    int all_region = -1;
+    for (const auto& [dim, ent] : surfaces) {
+      std::vector<int> types;
+      std::vector<std::vector<std::size_t>> etags, enodes;
+      gmsh::model::mesh::getElements(types, etags, enodes, dim, ent);
+      int region;
+      auto it = region_of_entity.find(ent);
+      if (it != region_of_entity.end()) {
+        region = it->second;
+      } else {
+        if (!groups.empty()) continue; // gmsh only saves physical elements; mirror that
+        if (all_region < 0) {
+          all_region = static_cast<int>(m.regions.size());
+          m.regions.push_back("all");
+        }
+        region = all_region;
+      }
+      for (std::size_t t = 0; t < types.size(); ++t) {
+        if (types[t] != 2) continue; // 3-node triangle
+        for (std::size_t k = 0; k + 2 < enodes[t].size(); k += 3) {
+          m.triangles.push_back({index.at(enodes[t][k]), index.at(enodes[t][k + 1]),
+                                 index.at(enodes[t][k + 2])});
+          m.region_of.push_back(region);
+        }
+      }
+    }
+
+    // Node sets: physical curves and points.
+    for (int dim : {0, 1}) {
+      gmsh::vectorpair g;
+      gmsh::model::getPhysicalGroups(g, dim);
+      for (const auto& [d, tag] : g) {
+        std::string name;
+        gmsh::model::getPhysicalName(d, tag, name);
+        if (name.empty()) name = std::to_string(tag);
+        std::vector<std::size_t> ntags;
+        std::vector<double> c;
+        gmsh::model::mesh::getNodesForPhysicalGroup(d, tag, ntags, c);
+        auto& set = m.node_sets[name];
+        for (auto nt : ntags) set.push_back(index.at(nt));
+      }
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(std::string("cannot read mesh: ") + e.what(), ErrorContext{file, 0, ""});
+  } catch (...) {
+    throw Error("cannot read mesh (gmsh failed)", ErrorContext{file, 0, ""});
+  }
+  if (m.triangles.empty())
+    throw Error("mesh has no 3-node triangles", ErrorContext{file, 0, ""});
+  finalizeMesh(m);
+  return m;
+}
+
+} // namespace lamina::membrane

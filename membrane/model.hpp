@@ -1,0 +1,92 @@
+#pragma once
+/// @file model.hpp
+/// @brief A membrane problem fully resolved against its mesh: sections per
+/// region, constrained DOFs, load patterns with time profiles, drag, point
+/// masses, probes and the time-stepping settings. Built from a case file by
+/// case_file.hpp, or directly by tests.
+///
+/// Units SI. Forces are nodal force vectors of length 3 * nodes (N), the
+/// DOF numbering of assembly.hpp.
+
+#include "membrane/assembly.hpp"
+#include "membrane/mesh.hpp"
+#include "membrane/profile.hpp"
+
+#include <Eigen/Dense>
+
+#include <string>
+#include <vector>
+
+namespace lamina::membrane {
+
+/// A load F(t) = profile(t) * pattern.
+struct Load {
+  std::string name;       ///< for messages and the summary
+  Eigen::VectorXd pattern; ///< nodal forces at profile value 1 (N)
+  TimeProfile profile;    ///< time factor
+};
+
+/// A set of constrained DOFs moving with prescribed velocity
+/// v_dof(t) = amplitude_dof * profile(t) (zero amplitude = fixed).
+struct Constraint {
+  std::string name;               ///< boundary set name (reactions are summed per set)
+  std::vector<int> dofs;          ///< constrained DOFs
+  std::vector<double> amplitude;  ///< velocity amplitude per DOF (m/s)
+  TimeProfile profile;            ///< time factor of the velocity
+};
+
+/// Aerodynamic drag on the nodes of a surface region (drag paper eqs. 1-3):
+/// F_i = -1/2 rho_f C_d A_i |V_i| V_n,i n along the normal n = e_z.
+struct Drag {
+  std::vector<int> nodes;       ///< nodes of the region
+  std::vector<double> area;     ///< tributary area of each node in the region (m^2)
+  double cd = 1.0;              ///< drag (or pressure) coefficient
+  double fluid_density = 1.225; ///< kg/m^3 (air)
+  bool resultant = false;       ///< |V| = resultant speed (true) or normal speed (false)
+};
+
+/// A named probe: the node nearest to a point.
+struct Probe {
+  std::string name; ///< column prefix in probes.csv
+  int node = -1;    ///< node index
+};
+
+/// Time integration and solver settings.
+struct TimeSettings {
+  double dt = 0;          ///< tau, s
+  double t_end = 0;       ///< s
+  double beta1 = 0.5;     ///< Newmark beta1 (eq. 30; gamma in other texts)
+  double beta2 = 0.5;     ///< Newmark beta2 (eq. 30; 2 beta in other texts)
+  double hht_alpha = 0;   ///< HHT-alpha in [-1/3, 0]; 0 = the paper's scheme
+  bool lumped = false;    ///< lumped (row-sum) instead of consistent mass
+  std::string solver = "cg"; ///< "cg" (block-Jacobi PCG, warm started) or "cholesky"
+  double tolerance = 1e-12;  ///< relative residual of the CG solve
+  int max_iterations = 2000; ///< CG iteration limit per solve
+  int drag_iterations = 20;  ///< fixed-point iterations on the drag per step
+  double drag_tolerance = 1e-12; ///< relative change of a ending them
+};
+
+/// Output settings.
+struct OutputSettings {
+  int field_every = 10;  ///< write fields every this many steps (0 = first and last only)
+  int energy_every = 1;  ///< compute kinetic/strain energy every this many steps
+  bool fields = true;    ///< write the XDMF/HDF5 series at all
+};
+
+/// Everything a run needs.
+struct Model {
+  std::string name;                 ///< case name (file stem)
+  Mesh mesh;                        ///< the mesh
+  std::vector<Section> sections;    ///< one per mesh region
+  std::vector<Constraint> constraints; ///< fixed and moving DOF sets
+  std::vector<Load> loads;          ///< external loads (incl. gravity)
+  std::vector<Drag> drags;          ///< drag regions
+  std::vector<std::pair<int, double>> point_masses; ///< (node, kg)
+  std::vector<Probe> probes;        ///< probes
+  TimeSettings time;                ///< time stepping
+  OutputSettings output;            ///< outputs
+  Eigen::VectorXd u0, v0;           ///< initial displacement and velocity (empty = zero)
+  int numDofs() const { return 3 * mesh.numNodes(); }
+};
+
+} // namespace lamina::membrane

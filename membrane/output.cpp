@@ -1,0 +1,127 @@
+#include "membrane/output.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+
+#include <cstdio>
+#include <sstream>
+
+namespace lamina::membrane {
+
+FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& stem,
+                         const Mesh& mesh, const std::vector<Section>& sections)
+    : h5_path_(dir / (stem + ".h5")), xdmf_path_(dir / (stem + ".xdmf")), mesh_(mesh),
+      sections_(sections) {
+  file_ = std::make_unique<core::H5File>(h5_path_, core::H5File::Mode::Create);
+  const auto n = static_cast<std::uint64_t>(mesh.numNodes());
+  const auto ne = static_cast<std::uint64_t>(mesh.numElements());
+  std::vector<double> xyz(3 * n, 0.0);
+  for (std::uint64_t i = 0; i < n; ++i) {
+    xyz[3 * i] = mesh.nodes[i].x();
+    xyz[3 * i + 1] = mesh.nodes[i].y();
+  }
+  std::vector<std::int32_t> tri(3 * ne), region(ne);
+  for (std::uint64_t e = 0; e < ne; ++e) {
+    for (int k = 0; k < 3; ++k) tri[3 * e + k] = mesh.triangles[e][k];
+    region[e] = mesh.region_of[e];
+  }
+  file_->createGroup("/mesh");
+  file_->writeDoubles("/mesh/geometry", xyz.data(), {n, 3});
+  file_->writeInts("/mesh/topology", tri.data(), {ne, 3});
+  file_->writeInts("/mesh/region", region.data(), {ne});
+  file_->createGroup("/steps");
+  file_->flush();
+  writeIndex();
+}
+
+void FieldWriter::write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+  const auto n = static_cast<std::uint64_t>(mesh_.numNodes());
+  const auto ne = static_cast<std::uint64_t>(mesh_.numElements());
+  const std::string g = "/steps/" + std::to_string(times_.size());
+  file_->createGroup(g);
+  file_->writeDoubles(g + "/displacement", u.data(), {n, 3});
+  file_->writeDoubles(g + "/velocity", v.data(), {n, 3});
+  std::vector<double> speed(n);
+  for (std::uint64_t i = 0; i < n; ++i) speed[i] = v.segment<3>(3 * i).norm();
+  file_->writeDoubles(g + "/speed", speed.data(), {n});
+  std::vector<double> strain(6 * ne), stress(6 * ne);
+  for (std::uint64_t e = 0; e < ne; ++e) {
+    const auto& tri = mesh_.triangles[e];
+    Eigen::Matrix<double, 9, 1> ae;
+    for (int k = 0; k < 3; ++k) ae.segment<3>(3 * k) = u.segment<3>(3 * tri[k]);
+    const Eigen::Matrix<double, 6, 1> eps = strainMatrix(mesh_, static_cast<int>(e)) * ae;
+    const Eigen::Matrix<double, 6, 1> sig = sections_[mesh_.region_of[e]].D * eps; // eq. (15)
+    for (int k = 0; k < 6; ++k) {
+      strain[6 * e + k] = eps[k];
+      stress[6 * e + k] = sig[k];
+    }
+  }
+  file_->writeDoubles(g + "/strain", strain.data(), {ne, 6});
+  file_->writeDoubles(g + "/stress", stress.data(), {ne, 6});
+  file_->writeAttribute(g, "time", t);
+  file_->flush();
+  times_.push_back(t);
+  writeIndex();
+}
+
+void FieldWriter::writeIndex() const {
+  const auto n = mesh_.numNodes();
+  const auto ne = mesh_.numElements();
+  const std::string h5 = h5_path_.filename().string();
+  std::ostringstream x;
+  x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
+    << "  <Grid Name=\"membrane\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  auto attr = [&](const std::string& name, const std::string& center, const std::string& type,
+                  int rows, int cols, const std::string& path) {
+    x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << type << "\" Center=\""
+      << center << "\">\n      <DataItem Dimensions=\"" << rows;
+    if (cols > 1) x << " " << cols;
+    x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << path
+      << "</DataItem>\n    </Attribute>\n";
+  };
+  for (size_t s = 0; s < times_.size(); ++s) {
+    const std::string g = "/steps/" + std::to_string(s);
+    x << "   <Grid Name=\"step" << s << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << core::formatExact(times_[s]) << "\"/>\n"
+      << "    <Topology TopologyType=\"Triangle\" NumberOfElements=\"" << ne
+      << "\">\n     <DataItem Dimensions=\"" << ne
+      << " 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
+      << ":/mesh/topology</DataItem>\n    </Topology>\n"
+      << "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" << n
+      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
+      << ":/mesh/geometry</DataItem>\n    </Geometry>\n";
+    attr("displacement", "Node", "Vector", n, 3, g + "/displacement");
+    attr("velocity", "Node", "Vector", n, 3, g + "/velocity");
+    attr("speed", "Node", "Scalar", n, 1, g + "/speed");
+    attr("strain", "Cell", "Matrix", ne, 6, g + "/strain");
+    attr("stress", "Cell", "Matrix", ne, 6, g + "/stress");
+    x << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  core::writeFileAtomically(xdmf_path_, x.str());
+}
+
+CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& header)
+    : path_(path), out_(path.string() + ".part") {
+  if (!out_) throw Error("cannot write", ErrorContext{path.string() + ".part", 0, ""});
+  out_ << header << '\n';
+}
+
+void CsvWriter::row(const std::vector<double>& values) {
+  for (size_t k = 0; k < values.size(); ++k) {
+    if (k) out_ << ',';
+    out_ << core::formatExact(values[k]);
+  }
+  out_ << '\n';
+  out_.flush();
+}
+
+void CsvWriter::close() {
+  if (closed_) return;
+  out_.close();
+  core::renameIntoPlace(path_.string() + ".part", path_);
+  closed_ = true;
+}
+
+} // namespace lamina::membrane

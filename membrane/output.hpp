@@ -1,0 +1,63 @@
+#pragma once
+/// @file output.hpp
+/// @brief Result files of a membrane run: the XDMF + HDF5 time series that
+/// ParaView opens, and CSV tables streamed line by line.
+///
+/// Contract (crash safety): the HDF5 file is flushed after every written
+/// step and the .xdmf index, which lists only completed steps, is rewritten
+/// atomically after each; a crash leaves a valid pair holding the steps
+/// written so far. CSV files are written to "<name>.part" and renamed into
+/// place by close().
+
+#include "membrane/assembly.hpp"
+#include "membrane/mesh.hpp"
+#include "core/hdf5_file.hpp"
+
+#include <Eigen/Dense>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lamina::membrane {
+
+/// XDMF + HDF5 series: mesh once; per step displacement, velocity, |v|
+/// (nodes) and strain, stress (elements, lamina order).
+class FieldWriter {
+public:
+  /// Creates DIR/<stem>.h5 and DIR/<stem>.xdmf for @p mesh.
+  FieldWriter(const std::filesystem::path& dir, const std::string& stem, const Mesh& mesh,
+              const std::vector<Section>& sections);
+  /// Writes the fields of state @p u, @p v at time @p t, flushes, rewrites the index.
+  void write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v);
+  /// @return number of steps written
+  int count() const { return static_cast<int>(times_.size()); }
+
+private:
+  void writeIndex() const;
+  std::filesystem::path h5_path_, xdmf_path_;
+  const Mesh& mesh_;
+  const std::vector<Section>& sections_;
+  std::unique_ptr<core::H5File> file_;
+  std::vector<double> times_;
+};
+
+/// A CSV table streamed to "<path>.part" and renamed to <path> by close().
+class CsvWriter {
+public:
+  /// Opens "<path>.part" and writes @p header (without newline).
+  CsvWriter(const std::filesystem::path& path, const std::string& header);
+  /// Writes one row of numbers (17 significant digits) and flushes.
+  void row(const std::vector<double>& values);
+  /// Renames the file into place.
+  void close();
+
+private:
+  std::filesystem::path path_;
+  std::ofstream out_;
+  bool closed_ = false;
+};
+
+} // namespace lamina::membrane

@@ -1,0 +1,191 @@
+#include "membrane/run.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/progress.hpp"
+#include "membrane/output.hpp"
+#include "membrane/simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+namespace lamina::membrane {
+
+namespace {
+
+/// One run: the method reads as set-up, then steps with outputs, then summary.
+class MembraneRun {
+public:
+  MembraneRun(const Model& model, const RunOptions& options) : model_(model), opt_(options) {}
+
+  nlohmann::json run() {
+    const auto start = std::chrono::steady_clock::now();
+    std::filesystem::create_directories(opt_.out_dir);
+    Simulation sim(model_); // assemble K, M; build A; set up its solver
+    openOutputs(sim);
+    const long steps = std::lround(model_.time.t_end / model_.time.dt);
+    core::ProgressLine progress("steps", std::max(1L, steps), opt_.quiet);
+    record(sim, true, true);
+    std::optional<DivergenceError> failure;
+    const auto step_start = std::chrono::steady_clock::now();
+    for (long s = 1; s <= steps; ++s) {
+      try {
+        sim.step();
+      } catch (const DivergenceError& e) {
+        failure = e;
+        break;
+      }
+      const bool last = s == steps;
+      const int fe = model_.output.field_every;
+      record(sim, last || (fe > 0 && s % fe == 0), last || s % model_.output.energy_every == 0);
+      progress.update(s, "t = " + core::formatShort(sim.time(), 4));
+    }
+    step_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
+    if (failure && fields_) fields_->write(sim.time(), sim.u(), sim.v()); // last finite state
+    if (failure) record(sim, false, true);
+    progress.finish();
+    closeOutputs();
+    wall_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    nlohmann::json summary = summarize(sim);
+    if (failure) summary["diverged"] = failure->message();
+    core::writeFileAtomically(opt_.out_dir / "summary.json", summary.dump(2) + "\n");
+    if (failure) throw *failure;
+    return summary;
+  }
+
+private:
+  void openOutputs(const Simulation&) {
+    if (model_.output.fields)
+      fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh,
+                                              model_.sections);
+    std::string h = "t";
+    for (const auto& p : model_.probes)
+      for (const char* c : {"_ux", "_uy", "_uz", "_vx", "_vy", "_vz"}) h += "," + p.name + c;
+    probes_ = std::make_unique<CsvWriter>(opt_.out_dir / "probes.csv", h);
+    energy_ = std::make_unique<CsvWriter>(
+        opt_.out_dir / "energy.csv",
+        "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance");
+    if (!model_.constraints.empty()) {
+      std::string r = "t";
+      for (const auto& c : model_.constraints)
+        for (const char* k : {"_Rx", "_Ry", "_Rz"}) r += "," + c.name + k;
+      reactions_ = std::make_unique<CsvWriter>(opt_.out_dir / "reactions.csv", r);
+    }
+    peak_reaction_.assign(model_.constraints.size(), 0.0);
+    probe_peak_.assign(model_.probes.size(), 0.0);
+  }
+
+  void record(const Simulation& sim, bool fields, bool energy) {
+    const auto& u = sim.u();
+    const auto& v = sim.v();
+    const int n = model_.mesh.numNodes();
+    for (int i = 0; i < n; ++i) {
+      max_abs_w_ = std::max(max_abs_w_, std::abs(u[3 * i + 2]));
+      max_speed_ = std::max(max_speed_, v.segment<3>(3 * i).norm());
+    }
+    std::vector<double> row{sim.time()};
+    for (size_t k = 0; k < model_.probes.size(); ++k) {
+      const int i = model_.probes[k].node;
+      for (int c = 0; c < 3; ++c) row.push_back(u[3 * i + c]);
+      for (int c = 0; c < 3; ++c) row.push_back(v[3 * i + c]);
+      probe_peak_[k] = std::max(probe_peak_[k], std::abs(u[3 * i + 2]));
+    }
+    probes_->row(row);
+    if (reactions_) {
+      const auto sums = sim.reactionSums();
+      std::vector<double> r{sim.time()};
+      for (size_t k = 0; k < sums.size(); ++k) {
+        for (int c = 0; c < 3; ++c) r.push_back(sums[k][c]);
+        peak_reaction_[k] = std::max(peak_reaction_[k], sums[k].norm());
+      }
+      reactions_->row(r);
+    }
+    if (energy) {
+      last_energy_ = sim.energy();
+      const auto& e = last_energy_;
+      const double total = e.kinetic + e.strain;
+      max_balance_ = std::max(max_balance_, std::abs(e.balance));
+      energy_scale_ = std::max({energy_scale_, total, std::abs(e.external_work),
+                                std::abs(e.reaction_work), std::abs(e.drag_work)});
+      energy_->row({sim.time(), e.kinetic, e.strain, e.external_work, e.reaction_work,
+                    e.drag_work, total, e.balance});
+    }
+    if (fields && fields_) fields_->write(sim.time(), u, v);
+  }
+
+  void closeOutputs() {
+    probes_->close();
+    energy_->close();
+    if (reactions_) reactions_->close();
+  }
+
+  nlohmann::json summarize(const Simulation& sim) const {
+    nlohmann::json s;
+    s["case"] = model_.name;
+    s["nodes"] = model_.mesh.numNodes();
+    s["elements"] = model_.mesh.numElements();
+    s["dofs"] = model_.numDofs();
+    s["steps"] = sim.steps();
+    s["dt"] = model_.time.dt;
+    s["t_end"] = sim.time();
+    s["max_abs_w"] = max_abs_w_;
+    s["max_speed"] = max_speed_;
+    const auto& e = last_energy_;
+    s["energy"] = {{"initial", sim.initialEnergy()},
+                   {"kinetic", e.kinetic},
+                   {"strain", e.strain},
+                   {"external_work", e.external_work},
+                   {"reaction_work", e.reaction_work},
+                   {"drag_work", e.drag_work},
+                   {"balance", e.balance},
+                   {"max_abs_balance", max_balance_},
+                   {"relative_balance", energy_scale_ > 0 ? max_balance_ / energy_scale_ : 0.0}};
+    nlohmann::json probes = nlohmann::json::object();
+    for (size_t k = 0; k < model_.probes.size(); ++k) {
+      const auto& p = model_.probes[k];
+      const int i = p.node;
+      probes[p.name] = {{"node", i},
+                        {"x", model_.mesh.nodes[i].x()},
+                        {"y", model_.mesh.nodes[i].y()},
+                        {"u", {sim.u()[3 * i], sim.u()[3 * i + 1], sim.u()[3 * i + 2]}},
+                        {"v", {sim.v()[3 * i], sim.v()[3 * i + 1], sim.v()[3 * i + 2]}},
+                        {"max_abs_uz", probe_peak_[k]}};
+    }
+    s["probes"] = probes;
+    nlohmann::json reac = nlohmann::json::object();
+    const auto sums = sim.reactionSums();
+    for (size_t k = 0; k < model_.constraints.size(); ++k)
+      reac[model_.constraints[k].name] = {{"peak", peak_reaction_[k]},
+                                          {"final", {sums[k][0], sums[k][1], sums[k][2]}}};
+    s["reactions"] = reac;
+    s["solver"] = {{"type", model_.time.solver},
+                   {"mean_iterations",
+                    sim.solver().solves() ? double(sim.solver().totalIterations()) /
+                                                double(sim.solver().solves())
+                                          : 0.0}};
+    s["wall_s"] = wall_s_;
+    s["assembly_s"] = sim.assemblySeconds();
+    s["factor_s"] = sim.setupSeconds();
+    s["step_s"] = sim.steps() ? step_s_ / double(sim.steps()) : 0.0;
+    return s;
+  }
+
+  const Model& model_;
+  RunOptions opt_;
+  std::unique_ptr<FieldWriter> fields_;
+  std::unique_ptr<CsvWriter> probes_, energy_, reactions_;
+  std::vector<double> peak_reaction_, probe_peak_;
+  Energy last_energy_;
+  double max_abs_w_ = 0, max_speed_ = 0, max_balance_ = 0, energy_scale_ = 0;
+  double wall_s_ = 0, step_s_ = 0;
+};
+
+} // namespace
+
+nlohmann::json runModel(const Model& model, const RunOptions& options) {
+  return MembraneRun(model, options).run();
+}
+
+} // namespace lamina::membrane

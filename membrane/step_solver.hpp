@@ -1,0 +1,58 @@
+#pragma once
+/// @file step_solver.hpp
+/// @brief Solves A x = b for the constant Newmark matrix A = M + tau^2/2 beta2 K
+/// (constrained rows and columns already replaced by the identity).
+///
+/// Contract: the matrix is set up once (constructor) and reused for every
+/// step. "cg": conjugate gradients preconditioned by the inverse 3x3 node
+/// blocks of A, warm-started from the x passed in, stopped when
+/// ||b - A x|| <= tolerance ||b||. "cholesky": a sparse Cholesky
+/// factorization (CHOLMOD supernodal when built with it, else Eigen's
+/// SimplicialLDLT), exact to round-off.
+
+#include "membrane/assembly.hpp"
+
+#include <Eigen/Dense>
+
+#include <memory>
+#include <string>
+
+namespace lamina::membrane {
+
+/// Linear solver of one Newmark step.
+class StepSolver {
+public:
+  /// Sets up the solver for @p A (symmetric positive definite, 3x3 block
+  /// pattern). @p kind is "cg" or "cholesky".
+  StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance, int max_iterations);
+  ~StepSolver();
+  StepSolver(const StepSolver&) = delete;
+  StepSolver& operator=(const StepSolver&) = delete;
+
+  /// Solves A x = b; @p x holds the initial guess on entry (cg) and the
+  /// solution on exit. @return the number of iterations (1 for cholesky).
+  /// Throws lamina::DivergenceError when CG does not reach the tolerance.
+  int solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+
+  /// @return total iterations over all solves
+  long totalIterations() const { return total_iterations_; }
+  /// @return number of solves
+  long solves() const { return solves_; }
+
+private:
+  void cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations);
+  const SparseMatrix& A_;
+  std::string kind_;
+  double tolerance_;
+  int max_iterations_;
+  std::vector<Eigen::Matrix3d> block_inverse_; // block-Jacobi preconditioner
+  Eigen::VectorXd r_, z_, p_, q_;
+  struct Direct;
+  std::unique_ptr<Direct> direct_;
+  long total_iterations_ = 0, solves_ = 0;
+};
+
+/// y = A x with rows split over OpenMP threads.
+void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& y);
+
+} // namespace lamina::membrane
