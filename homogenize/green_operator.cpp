@@ -1,0 +1,62 @@
+#include "homogenize/green_operator.hpp"
+
+#include <cmath>
+
+namespace lamina::homogenize {
+
+GreenOperator::GreenOperator(const Grid& grid, double lambda0, double mu0, const VectorFft& fft)
+    : grid_(grid), lambda0_(lambda0), mu0_(mu0), fft_(fft) {
+  for (int d = 0; d < 3; ++d) {
+    const int n = grid.n[static_cast<std::size_t>(d)];
+    const int m = (d == 2) ? n / 2 + 1 : n; // r2c keeps half the last axis
+    for (int k = 0; k < m; ++k) {
+      const double half_xi = M_PI * k / n; // xi/2 with xi = 2 pi k / n
+      sin_[d].push_back(std::sin(half_xi));
+      cos_[d].push_back(std::cos(half_xi));
+    }
+  }
+}
+
+void GreenOperator::apply(const double* r, double* z) const {
+  fftw_complex* w = fft_.work();
+  fft_.forward(r, w);
+  const int n0 = grid_.n[0], n1 = grid_.n[1], m2 = grid_.n[2] / 2 + 1;
+  const std::size_t Nc = grid_.complexSize();
+  const double norm = 1.0 / static_cast<double>(grid_.size()); // FFTW is unnormalized
+  const double beta = (lambda0_ + mu0_) / (lambda0_ + 2 * mu0_);
+  const double h0 = grid_.h[0], h1 = grid_.h[1], h2 = grid_.h[2];
+  // |q|^2 below this is a zero of q (cos(pi/2) is 6e-17, not 0)
+  const double qmax2 = 4.0 * (1 / (h0 * h0) + 1 / (h1 * h1) + 1 / (h2 * h2));
+  const double zero2 = 1e-20 * qmax2;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n0; ++i)
+    for (int j = 0; j < n1; ++j) {
+      const double s0 = sin_[0][static_cast<std::size_t>(i)], c0 = cos_[0][static_cast<std::size_t>(i)];
+      const double s1 = sin_[1][static_cast<std::size_t>(j)], c1 = cos_[1][static_cast<std::size_t>(j)];
+      for (int k = 0; k < m2; ++k) {
+        const double s2 = sin_[2][static_cast<std::size_t>(k)], c2 = cos_[2][static_cast<std::size_t>(k)];
+        const std::size_t idx = (static_cast<std::size_t>(i) * n1 + j) * m2 + k;
+        const double q0 = 2 * s0 * c1 * c2 / h0, q1 = 2 * c0 * s1 * c2 / h1,
+                     q2 = 2 * c0 * c1 * s2 / h2;
+        const double qq = q0 * q0 + q1 * q1 + q2 * q2;
+        fftw_complex* a = w + idx;
+        fftw_complex* b = w + Nc + idx;
+        fftw_complex* c = w + 2 * Nc + idx;
+        if (qq <= zero2) {
+          (*a)[0] = (*a)[1] = (*b)[0] = (*b)[1] = (*c)[0] = (*c)[1] = 0;
+          continue;
+        }
+        const double inv = norm / (mu0_ * qq), bq = beta / qq;
+        for (int part = 0; part < 2; ++part) {
+          const double ra = (*a)[part], rb = (*b)[part], rc = (*c)[part];
+          const double dot = bq * (q0 * ra + q1 * rb + q2 * rc);
+          (*a)[part] = inv * (ra - dot * q0);
+          (*b)[part] = inv * (rb - dot * q1);
+          (*c)[part] = inv * (rc - dot * q2);
+        }
+      }
+    }
+  fft_.backward(w, z);
+}
+
+} // namespace lamina::homogenize

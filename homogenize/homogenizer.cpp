@@ -1,0 +1,216 @@
+#include "homogenize/homogenizer.hpp"
+
+#include "core/error.hpp"
+#include "core/progress.hpp"
+#include "homogenize/cell_operator.hpp"
+#include "homogenize/fft.hpp"
+#include "homogenize/green_operator.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <sstream>
+
+namespace lamina::homogenize {
+
+double Result::maxResidual() const {
+  double r = 0;
+  for (const auto& c : cases)
+    r = std::max(r, c.residual);
+  return r;
+}
+
+std::array<int, 6> Result::iterations() const {
+  std::array<int, 6> it{};
+  for (std::size_t k = 0; k < 6; ++k)
+    it[k] = cases[k].iterations;
+  return it;
+}
+
+void referenceMedium(const std::vector<materials::Stiffness>& C, double& lambda0, double& mu0) {
+  double kmin = std::numeric_limits<double>::max(), kmax = 0;
+  double gmin = std::numeric_limits<double>::max(), gmax = 0;
+  for (const auto& c : C) {
+    kmin = std::min(kmin, materials::reussBulk(c));
+    kmax = std::max(kmax, materials::voigtBulk(c));
+    gmin = std::min(gmin, materials::reussShear(c));
+    gmax = std::max(gmax, materials::voigtShear(c));
+  }
+  const double K0 = std::sqrt(kmin * kmax);
+  mu0 = std::sqrt(gmin * gmax);
+  lambda0 = K0 - 2.0 * mu0 / 3.0;
+}
+
+namespace {
+
+double dot(const double* a, const double* b, std::size_t n) {
+  double s = 0;
+#pragma omp parallel for reduction(+ : s) schedule(static)
+  for (std::size_t i = 0; i < n; ++i)
+    s += a[i] * b[i];
+  return s;
+}
+
+/// The pieces of one solve, set up once and reused by the six load cases.
+class CgSolver {
+public:
+  CgSolver(const Grid& grid, const CellOperator& A, const GreenOperator& M, double ref_scale)
+      : n_(3 * grid.size()), A_(A), M_(M), ref_(ref_scale), x_(n_), r_(n_), p_(n_), w_(n_) {}
+
+  /// Solves load case E; returns the average stress in @p sigma.
+  LoadCaseResult solve(const std::array<double, 6>& E, double energy_E, const Options& opt,
+                       const std::function<void(int, double)>& monitor,
+                       std::array<double, 6>& sigma) {
+    double* x = x_.data();
+    double* r = r_.data();
+    double* p = p_.data();
+    double* w = w_.data();
+    const std::size_t n = n_;
+    // r = b = -D^T C E (x = 0)
+    A_.apply(nullptr, E, r, nullptr);
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < n; ++i) {
+      r[i] = -r[i];
+      x[i] = 0;
+    }
+    M_.apply(r, p); // z0 = p0
+    double rz = dot(r, p, n);
+    const double scale = ref_ * energy_E;
+    LoadCaseResult res;
+    res.residual = std::sqrt(std::max(rz, 0.0) / scale);
+    const std::array<double, 6> zero{0, 0, 0, 0, 0, 0};
+    while (res.residual > opt.tol) {
+      if (res.iterations >= opt.max_iterations) {
+        std::ostringstream os;
+        os << "conjugate gradients did not reach tol " << opt.tol << " in " << opt.max_iterations
+           << " iterations (residual " << res.residual << ")";
+        throw Error(os.str());
+      }
+      A_.apply(p, zero, w, nullptr); // w = A p
+      const double pw = dot(p, w, n);
+      const double alpha = rz / pw;
+      if (!std::isfinite(alpha) || !(pw > 0))
+        throw DivergenceError("conjugate gradients broke down (p^T A p = " + std::to_string(pw) +
+                              "): NaN/Inf or an indefinite phase stiffness");
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < n; ++i) {
+        x[i] += alpha * p[i];
+        r[i] -= alpha * w[i];
+      }
+      M_.apply(r, w); // w now holds z = M r
+      const double rz_new = dot(r, w, n);
+      if (!std::isfinite(rz_new))
+        throw DivergenceError("residual is NaN/Inf in conjugate gradients");
+      const double beta = rz_new / rz;
+      rz = rz_new;
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < n; ++i)
+        p[i] = w[i] + beta * p[i];
+      ++res.iterations;
+      res.residual = std::sqrt(std::max(rz, 0.0) / scale);
+      if (monitor)
+        monitor(res.iterations, res.residual);
+    }
+    A_.apply(x, E, nullptr, &sigma);
+    return res;
+  }
+
+private:
+  std::size_t n_;
+  const CellOperator& A_;
+  const GreenOperator& M_;
+  double ref_;
+  AlignedBuffer x_, r_, p_, w_;
+};
+
+} // namespace
+
+Homogenizer::Homogenizer(const Grid& grid, std::vector<std::int32_t> phase,
+                         std::vector<materials::Stiffness> C, std::vector<double> density,
+                         Options options)
+    : grid_(grid), phase_(std::move(phase)), C_(std::move(C)), density_(std::move(density)),
+      opt_(options) {
+  LAMINA_CHECK(C_.size() == density_.size(), "one density per phase is required");
+  LAMINA_CHECK(phase_.size() == grid_.size(), "phase map size does not match the grid");
+  LAMINA_CHECK(opt_.tol > 0, "tolerance must be positive");
+  for (std::size_t p = 0; p < C_.size(); ++p)
+    C_[p].validate("phase " + std::to_string(p));
+}
+
+Result Homogenizer::run() {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (opt_.threads > 0)
+    omp_set_num_threads(opt_.threads);
+  Result res;
+  res.voxels = grid_.size();
+
+  // setup: phase fractions, density, reference medium, FFT plans
+  std::vector<std::size_t> count(C_.size(), 0);
+  for (std::int32_t p : phase_) {
+    LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C_.size(), "phase index ", p,
+                 " has no stiffness");
+    ++count[static_cast<std::size_t>(p)];
+  }
+  std::vector<materials::Stiffness> present;
+  for (std::size_t p = 0; p < C_.size(); ++p) {
+    const double f = static_cast<double>(count[p]) / static_cast<double>(res.voxels);
+    res.voxel_fraction.push_back(f);
+    res.density += f * density_[p];
+    if (count[p] > 0)
+      present.push_back(C_[p]);
+  }
+  referenceMedium(present, res.lambda0, res.mu0);
+  const materials::Stiffness C0 = materials::Stiffness::fromLame(res.lambda0, res.mu0);
+  const VectorFft fft(grid_, opt_.threads > 0 ? opt_.threads : omp_get_max_threads(), opt_.measure);
+  const CellOperator A(grid_, phase_, C_);
+  const GreenOperator M(grid_, res.lambda0, res.mu0, fft);
+  CgSolver cg(grid_, A, M, static_cast<double>(res.voxels));
+
+  // solve: six unit strains (lamina order, engineering shear) -> six columns
+  core::ProgressLine progress("homogenize", 6, opt_.quiet);
+  materials::Matrix6 C = materials::Matrix6::Zero();
+  for (int k = 0; k < 6; ++k) {
+    std::array<double, 6> E{0, 0, 0, 0, 0, 0}, sigma{};
+    E[static_cast<std::size_t>(k)] = 1.0;
+    const double energy = C0.matrix()(k, k); // E^T C0 E for a unit E_k
+    auto monitor = [&](int it, double r) {
+      if (monitor_)
+        monitor_(k, it, r);
+      else {
+        std::ostringstream os;
+        os << "load case " << k + 1 << "/6, iteration " << it << ", residual " << r;
+        progress.update(k, os.str());
+      }
+    };
+    try {
+      res.cases[static_cast<std::size_t>(k)] = cg.solve(E, energy, opt_, monitor, sigma);
+    } catch (const DivergenceError& e) {
+      throw DivergenceError("load case " + std::to_string(k + 1) + ": " + e.message());
+    } catch (const Error& e) {
+      throw Error("load case " + std::to_string(k + 1) + ": " + e.message());
+    }
+    for (int a = 0; a < 6; ++a)
+      C(a, k) = sigma[static_cast<std::size_t>(a)];
+  }
+  progress.finish();
+
+  // output: raw and symmetrized C, diagnostics
+  res.C_raw = materials::Stiffness(C);
+  res.asymmetry = res.C_raw.asymmetry();
+  res.C = res.C_raw.symmetrized();
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      LAMINA_CHECK(std::isfinite(res.C(i, j)), "effective stiffness is not finite");
+  // C is accurate to about the solver tolerance: classify with a margin above it
+  res.symmetry_tol = std::max(1e-6, 10 * opt_.tol);
+  res.symmetry = materials::classify(res.C, res.symmetry_tol);
+  res.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+} // namespace lamina::homogenize

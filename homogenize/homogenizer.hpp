@@ -1,0 +1,100 @@
+#pragma once
+/// @file homogenizer.hpp
+/// @brief Effective stiffness of a periodic voxel cell: six load cases of the
+/// cell problem solved by FFT-preconditioned conjugate gradients.
+///
+/// Method (docs/homogenize.md): for each unit macroscopic strain E_k (lamina
+/// order, engineering shear) find the periodic nodal displacement u with
+/// D^T C (E_k + D u) = 0 (cell_operator.hpp), by conjugate gradients
+/// preconditioned with the reference-medium Green operator
+/// (green_operator.hpp). Column k of C is the average stress <C (E_k + D u)>.
+/// The iteration count grows like sqrt(contrast): the preconditioned operator
+/// has spectrum in [min, max] of the phase/reference modulus ratios.
+///
+/// Convergence criterion: sqrt(r^T K0^-1 r / (N E_k^T C0 E_k)) <= tol, i.e.
+/// the error of the strain field in the reference energy norm relative to the
+/// applied strain.
+
+#include "homogenize/grid.hpp"
+#include "materials/stiffness.hpp"
+#include "materials/symmetry.hpp"
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace lamina::homogenize {
+
+/// Solver settings.
+struct Options {
+  double tol = 1e-6;          ///< relative residual of each load case
+  int max_iterations = 10000; ///< per load case; exceeding it is an error
+  int threads = 0;            ///< OpenMP and FFTW threads (0: OpenMP default)
+  bool measure = false;       ///< FFTW_MEASURE planning (pays off from ~64^3)
+  bool quiet = true;          ///< no progress line
+};
+
+/// Outcome of one load case.
+struct LoadCaseResult {
+  int iterations = 0;   ///< CG iterations
+  double residual = 0;  ///< final relative residual
+};
+
+/// Everything a homogenization produces.
+struct Result {
+  materials::Stiffness C_raw;       ///< columns from the six load cases (Pa, lamina order)
+  materials::Stiffness C;           ///< symmetrized C_raw
+  double asymmetry = 0;             ///< max |C_raw - C_raw^T| / max |C_raw|
+  double density = 0;               ///< volume average (kg/m^3)
+  std::array<LoadCaseResult, 6> cases; ///< per load case
+  materials::Symmetry symmetry{materials::SymmetryClass::Triclinic, -1}; ///< class of C
+  double symmetry_tol = 0;          ///< relative tolerance used to classify
+  double lambda0 = 0, mu0 = 0;      ///< reference medium (Pa)
+  std::size_t voxels = 0;           ///< number of voxels
+  std::vector<double> voxel_fraction; ///< per phase
+  double wall_s = 0;                ///< wall time of run() (s)
+  /// @return the largest final residual of the six cases
+  double maxResidual() const;
+  /// @return the iterations of the six cases
+  std::array<int, 6> iterations() const;
+};
+
+/// Reference Lame constants for the preconditioner: bulk and shear moduli
+/// at the geometric means of the extreme phase moduli (Voigt/Reuss averages
+/// for anisotropic phases), which balances the spectrum of K0^-1 A.
+/// @param C stiffness of the phases that occur in the cell
+void referenceMedium(const std::vector<materials::Stiffness>& C, double& lambda0, double& mu0);
+
+/// The homogenization problem; run() reads as the method.
+class Homogenizer {
+public:
+  /// @param grid voxel grid (n and voxel lengths)
+  /// @param phase phase index per voxel (C order, x slowest)
+  /// @param C stiffness per phase (lamina order, Pa; validated here)
+  /// @param density density per phase (kg/m^3)
+  /// @param options solver settings
+  Homogenizer(const Grid& grid, std::vector<std::int32_t> phase, std::vector<materials::Stiffness> C,
+              std::vector<double> density, Options options);
+
+  /// Called after each CG iteration: load case (0-5), iteration, residual.
+  using Monitor = std::function<void(int, int, double)>;
+  /// Installs @p m (replaces the built-in progress line).
+  void setMonitor(Monitor m) { monitor_ = std::move(m); }
+
+  /// Solves the six load cases and returns C, density and diagnostics.
+  /// Throws lamina::DivergenceError on NaN/Inf, lamina::Error when a case
+  /// does not converge within max_iterations.
+  Result run();
+
+private:
+  Grid grid_;
+  std::vector<std::int32_t> phase_;
+  std::vector<materials::Stiffness> C_;
+  std::vector<double> density_;
+  Options opt_;
+  Monitor monitor_;
+};
+
+} // namespace lamina::homogenize

@@ -1,0 +1,80 @@
+#include "homogenize/library_entry.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+
+#ifndef LAMINA_VERSION
+#define LAMINA_VERSION "unknown"
+#endif
+
+namespace lamina::homogenize {
+
+Grid gridOf(const micro::UnitCell& cell) {
+  Grid g;
+  g.n = cell.n;
+  for (int d = 0; d < 3; ++d)
+    g.h[static_cast<std::size_t>(d)] = cell.size[d] / cell.n[static_cast<std::size_t>(d)];
+  return g;
+}
+
+std::string entryName(const std::string& base, double J, bool sweep) {
+  if (!sweep)
+    return base;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%s-J%g", base.c_str(), J);
+  return buf;
+}
+
+namespace {
+std::string utcNow() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+} // namespace
+
+materials::Material makeEntry(const std::string& name, const micro::CellSpec& spec,
+                              const micro::UnitCell& cell, const Result& result,
+                              const Options& options, double J) {
+  materials::Material m;
+  m.name = name;
+  m.C = result.C;
+  m.density = result.density;
+  m.kind = "homogenized";
+  toml::table& p = m.provenance;
+  p.insert("program", "homogenize");
+  p.insert("version", LAMINA_VERSION);
+  p.insert("time", utcNow());
+  p.insert("cell_file", spec.file);
+  p.insert("cell_text", spec.text);
+  p.insert("resolution", toml::array{cell.n[0], cell.n[1], cell.n[2]});
+  p.insert("voxels", static_cast<std::int64_t>(result.voxels));
+  toml::array fractions;
+  for (double f : result.voxel_fraction)
+    fractions.push_back(f);
+  p.insert("volume_fractions", fractions);
+  toml::array names;
+  for (const auto& ph : spec.phases)
+    names.push_back(ph.name + " (" + ph.source + ")");
+  p.insert("phases", names);
+  p.insert("J", J);
+  p.insert("solver", kSolverName);
+  p.insert("tol", options.tol);
+  p.insert("residual", result.maxResidual());
+  toml::array its;
+  for (int it : result.iterations())
+    its.push_back(it);
+  p.insert("iterations", its);
+  p.insert("asymmetry_before_symmetrizing", result.asymmetry);
+  p.insert("symmetry", materials::toString(result.symmetry.cls));
+  p.insert("reference_lambda0", result.lambda0);
+  p.insert("reference_mu0", result.mu0);
+  p.insert("wall_s", result.wall_s);
+  return m;
+}
+
+} // namespace lamina::homogenize

@@ -1,0 +1,88 @@
+#pragma once
+/// @file cell.hpp
+/// @brief The description of a unit cell as read from a cell file
+/// (cases/cells/*.toml): resolution, size, phases, inclusion groups.
+///
+/// Format (full reference in docs/homogenize.md):
+/// ```toml
+/// [cell]
+/// resolution = 32            # N or [N1, N2, N3] voxels
+/// size = [1.0, 1.0, 1.0]     # optional, cell edge lengths (any length unit)
+/// [[phases]]                 # the first phase is the matrix
+/// name = "soft"
+/// catalog = "polyurea-soft"  # or law = "isotropic" / "anisotropic" / "gvbo" ...
+/// J = [1.0, 0.95]            # gvbo only: states to homogenize at
+/// [[inclusions]]
+/// phase = "hard"
+/// shape = "ellipsoid"        # sphere, ellipsoid, fiber, layer
+/// semi_axes = [1, 1, 2]
+/// orientation = { axis = [0, 1, 0], angle = 45 }   # degrees
+/// placement = "random"       # single, lattice, random
+/// volume_fraction = 0.19
+/// count = 8
+/// seed = 1
+/// min_gap = 0.02
+/// ```
+
+#include "micro/inclusion.hpp"
+#include "micro/phase.hpp"
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lamina::micro {
+
+/// How the inclusions of a group are placed.
+enum class Placement { Single, Lattice, Random };
+
+/// One `[[inclusions]]` table: a prototype inclusion and how to place copies.
+struct InclusionGroup {
+  Inclusion prototype;          ///< shape, phase, semi-axes/radius/thickness, orientation
+  Placement placement = Placement::Single;
+  std::optional<double> volume_fraction; ///< target analytic fraction of the group
+  std::array<int, 3> lattice{1, 1, 1};   ///< copies along x, y, z (lattice)
+  int count = 0;                ///< random: number of copies (0: from the fraction)
+  std::uint64_t seed = 1;       ///< random: seed of the generator
+  double min_gap = 0;           ///< minimum distance between inclusions
+  int max_attempts = 200000;    ///< random: attempts per inclusion before giving up
+  std::string key;              ///< "inclusions[i]" for messages
+};
+
+/// A cell file, parsed and validated (nothing placed yet).
+struct CellSpec {
+  std::string file;             ///< path it was read from
+  std::string text;             ///< the full file text (provenance)
+  std::string description;      ///< optional one-line description
+  std::array<int, 3> resolution{32, 32, 32}; ///< voxels along x, y, z
+  Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths
+  std::vector<Phase> phases;    ///< phases[0] is the matrix
+  std::vector<InclusionGroup> groups;
+
+  /// @return the index of the phase named @p name, -1 if none
+  int phaseIndex(const std::string& name) const;
+  /// @return the J states of the swept gvbo phase ({1.0} if none has a list)
+  std::vector<double> sweepStates() const;
+  /// @return the stiffness of every phase at matrix state @p J
+  std::vector<materials::Stiffness> stiffnessesAt(double J) const;
+  /// @return the density of every phase
+  std::vector<double> densities() const;
+};
+
+/// Reads and validates a cell file. @p catalog is consulted only for phases
+/// with `catalog = "NAME"`. Throws lamina::Error naming the file, line and key
+/// for a malformed file (unknown key, negative radius, unknown phase...).
+CellSpec readCell(const std::filesystem::path& path, const CatalogProvider& catalog);
+
+/// As readCell, from text; @p source names it in messages.
+CellSpec readCellString(const std::string& text, const std::string& source,
+                        const CatalogProvider& catalog);
+
+/// A provider that loads materials::Catalog(materials::Catalog::defaultPath())
+/// (or @p path if non-empty) once, on first use.
+CatalogProvider lazyCatalog(const std::filesystem::path& path = {});
+
+} // namespace lamina::micro

@@ -1,0 +1,60 @@
+#pragma once
+/// @file inclusion.hpp
+/// @brief Inclusion shapes of a periodic unit cell and their geometry:
+/// membership of a point, volume, periodic overlap with a gap.
+///
+/// Shapes: sphere (an ellipsoid with equal semi-axes), ellipsoid (semi-axes
+/// a, b, c along its own axes, rotated by R), fiber (infinite circular
+/// cylinder along a coordinate axis, periodic along it) and layer (slab
+/// normal to a coordinate axis, spanning the cell). Lengths are in the units
+/// of the cell size. Positions are periodic: distances use the nearest image.
+
+#include <Eigen/Dense>
+
+#include <string>
+
+namespace lamina::micro {
+
+/// Kinds of inclusion.
+enum class Shape { Sphere, Ellipsoid, Fiber, Layer };
+
+/// @return the shape for "sphere", "ellipsoid", "fiber", "layer"; false if unknown
+bool parseShape(const std::string& word, Shape& out);
+/// @return the name of @p s
+std::string toString(Shape s);
+
+/// One placed inclusion.
+struct Inclusion {
+  Shape shape = Shape::Sphere;
+  int phase = 0;                           ///< phase index it is made of
+  Eigen::Vector3d center = Eigen::Vector3d::Zero(); ///< centre (a point on the axis / mid-plane)
+  Eigen::Vector3d semi = Eigen::Vector3d::Ones();   ///< ellipsoid semi-axes (sphere: r, r, r)
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< columns: the ellipsoid axes in cell axes
+  double radius = 0;                       ///< fiber radius
+  double thickness = 0;                    ///< layer thickness
+  int axis = 0;                            ///< fiber direction / layer normal (0=x,1=y,2=z)
+
+  /// @return whether @p p (cell coordinates) lies inside, using the nearest
+  /// periodic image of p - center in a cell of size @p L
+  bool contains(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const;
+  /// @return the inclusion's volume (fiber and layer: inside one cell of size @p L)
+  double volume(const Eigen::Vector3d& L) const;
+  /// @return half the extent of the inclusion along each cell axis
+  /// (fiber/layer: half the cell length along the unbounded directions)
+  Eigen::Vector3d halfExtent(const Eigen::Vector3d& L) const;
+  /// Scales all lengths (semi-axes, radius, thickness) by @p s.
+  void scale(double s);
+  /// @return the exponent d with volume ~ length^d (3, fiber 2, layer 1)
+  int dimension() const;
+};
+
+/// @return the nearest periodic image of @p d in a cell of size @p L
+Eigen::Vector3d nearestImage(Eigen::Vector3d d, const Eigen::Vector3d& L);
+
+/// @return whether @p a and @p b, each grown by @p gap / 2, overlap in the
+/// periodic cell of size @p L. Ellipsoid pairs use the Perram-Wertheim
+/// contact function (exact); fibers and layers exact; mixed pairs with a
+/// fiber or layer use a conservative bounding test.
+bool overlaps(const Inclusion& a, const Inclusion& b, double gap, const Eigen::Vector3d& L);
+
+} // namespace lamina::micro

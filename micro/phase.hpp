@@ -1,0 +1,53 @@
+#pragma once
+/// @file phase.hpp
+/// @brief One material phase of a unit cell: its law, stiffness and density.
+///
+/// A phase is read from a `[[phases]]` table of a cell file (see
+/// docs/homogenize.md). Laws: "isotropic" (E, nu), "anisotropic" (C, 6x6,
+/// lamina order, Pa) and "gvbo" (the polyurea chapter's law; for a linear
+/// homogenization it contributes its instantaneous isotropic moduli at a
+/// matrix state J, eqs. 13-16, never below the initial moduli). A phase can
+/// instead name a catalog entry (`catalog = "NAME"`), which supplies law,
+/// parameters and density.
+
+#include "materials/catalog.hpp"
+#include "materials/gvbo.hpp"
+#include "materials/stiffness.hpp"
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lamina::core {
+class TableReader;
+}
+
+namespace lamina::micro {
+
+/// A phase of a unit cell.
+struct Phase {
+  std::string name;        ///< unique name within the cell
+  std::string law;         ///< "isotropic", "anisotropic" or "gvbo"
+  std::string source;      ///< "catalog:NAME" or "inline"
+  materials::Stiffness C;  ///< elastic stiffness (gvbo: at J = 1), lamina order, Pa
+  double density = 0;      ///< kg/m^3, > 0
+  std::optional<materials::GvboParameters> gvbo; ///< set for law "gvbo"
+  std::vector<double> J;   ///< gvbo states to homogenize at (empty: J = 1)
+
+  /// Stiffness of the phase at matrix state @p J (lamina order, Pa). For a
+  /// gvbo phase: isotropic from gvboModuli(J) (eqs. 13-16 of the chapter);
+  /// for other laws @p J is ignored and C is returned.
+  materials::Stiffness stiffnessAt(double J) const;
+};
+
+/// Supplies catalog entries on demand (the catalog file is read only when a
+/// phase names one).
+using CatalogProvider = std::function<const materials::Catalog&()>;
+
+/// Reads one `[[phases]]` table. Throws lamina::Error naming the file and key
+/// on a missing, unknown or invalid value (E <= 0, nu outside (-1, 0.5), C not
+/// symmetric positive definite, J <= 0, J given for a non-gvbo phase...).
+Phase readPhase(const core::TableReader& t, const CatalogProvider& catalog);
+
+} // namespace lamina::micro

@@ -1,0 +1,176 @@
+#include "micro/unit_cell.hpp"
+
+#include "core/error.hpp"
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace lamina::micro {
+
+void UnitCell::countFractions() {
+  std::vector<std::size_t> counts(static_cast<std::size_t>(phase_count), 0);
+  for (std::int32_t p : phase)
+    ++counts[static_cast<std::size_t>(p)];
+  voxel_fraction.assign(counts.size(), 0.0);
+  for (std::size_t i = 0; i < counts.size(); ++i)
+    voxel_fraction[i] = static_cast<double>(counts[i]) / static_cast<double>(phase.size());
+}
+
+namespace {
+
+[[noreturn]] void groupError(const CellSpec& spec, const InclusionGroup& g, const std::string& msg) {
+  throw Error(msg, {spec.file, 0, g.key});
+}
+
+void checkFits(const CellSpec& spec, const InclusionGroup& g, const Inclusion& inc) {
+  const Eigen::Vector3d e = inc.halfExtent(spec.size);
+  for (int i = 0; i < 3; ++i) {
+    const bool unbounded = (inc.shape == Shape::Fiber && i == inc.axis) ||
+                           (inc.shape == Shape::Layer && i != inc.axis);
+    if (!unbounded && 2 * e[i] + g.min_gap >= spec.size[i])
+      groupError(spec, g, "inclusion (with min_gap) does not fit in the cell along axis " +
+                              std::string(1, "xyz"[i]) + ": lower its size or volume_fraction");
+  }
+}
+
+} // namespace
+
+std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>& target,
+                                       std::vector<double>& analytic) {
+  std::vector<Inclusion> placed;
+  const double V = spec.size.prod();
+  target.clear();
+  analytic.clear();
+  for (const InclusionGroup& g : spec.groups) {
+    Inclusion proto = g.prototype;
+    int copies = 1;
+    if (g.placement == Placement::Lattice)
+      copies = g.lattice[0] * g.lattice[1] * g.lattice[2];
+    else if (g.placement == Placement::Random)
+      copies = g.count > 0 ? g.count
+                           : std::max(1, static_cast<int>(std::lround(*g.volume_fraction * V /
+                                                                      proto.volume(spec.size))));
+    if (g.volume_fraction) {
+      // scale all lengths so that `copies` inclusions reach the target exactly
+      const double s = std::pow(*g.volume_fraction * V / (copies * proto.volume(spec.size)),
+                                1.0 / proto.dimension());
+      proto.scale(s);
+    }
+    target.push_back(g.volume_fraction ? *g.volume_fraction
+                                       : std::numeric_limits<double>::quiet_NaN());
+    analytic.push_back(copies * proto.volume(spec.size) / V);
+    checkFits(spec, g, proto);
+    auto accept = [&](const Inclusion& c) {
+      for (const Inclusion& o : placed)
+        if (overlaps(c, o, g.min_gap, spec.size))
+          return false;
+      return true;
+    };
+    if (g.placement == Placement::Single) {
+      if (!accept(proto))
+        groupError(spec, g, "inclusion overlaps an earlier one");
+      placed.push_back(proto);
+    } else if (g.placement == Placement::Lattice) {
+      std::vector<Inclusion> mine;
+      for (int i = 0; i < g.lattice[0]; ++i)
+        for (int j = 0; j < g.lattice[1]; ++j)
+          for (int k = 0; k < g.lattice[2]; ++k) {
+            Inclusion c = proto;
+            c.center = Eigen::Vector3d((i + 0.5) / g.lattice[0], (j + 0.5) / g.lattice[1],
+                                       (k + 0.5) / g.lattice[2])
+                           .cwiseProduct(spec.size);
+            if (!accept(c))
+              groupError(spec, g, "lattice inclusions overlap (with min_gap): lower the fraction");
+            mine.push_back(c);
+          }
+      for (const auto& c : mine) {
+        for (const auto& o : mine)
+          if (&o != &c && overlaps(c, o, g.min_gap, spec.size))
+            groupError(spec, g, "lattice inclusions overlap (with min_gap): lower the fraction");
+      }
+      placed.insert(placed.end(), mine.begin(), mine.end());
+    } else {
+      // random sequential adsorption with periodic wrap, reproducible from the seed
+      std::mt19937_64 rng(g.seed);
+      std::uniform_real_distribution<double> u01(0.0, 1.0);
+      for (int c = 0; c < copies; ++c) {
+        bool ok = false;
+        for (int a = 0; a < g.max_attempts && !ok; ++a) {
+          Inclusion cand = proto;
+          for (int i = 0; i < 3; ++i)
+            cand.center[i] = u01(rng) * spec.size[i];
+          if (accept(cand)) {
+            placed.push_back(cand);
+            ok = true;
+          }
+        }
+        if (!ok)
+          groupError(spec, g,
+                     "random placement failed for inclusion " + std::to_string(c + 1) + " of " +
+                         std::to_string(copies) + " after " + std::to_string(g.max_attempts) +
+                         " attempts: lower volume_fraction or min_gap, or use fewer, larger "
+                         "inclusions");
+      }
+    }
+  }
+  return placed;
+}
+
+std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
+                                   const std::array<int, 3>& n, const Eigen::Vector3d& size) {
+  const std::size_t total =
+      static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
+  std::vector<std::int32_t> map(total, 0);
+  const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
+  for (const Inclusion& inc : inclusions) {
+    // bounding box of voxel indices around the centre, wrapped periodically
+    const Eigen::Vector3d e = inc.halfExtent(size);
+    std::array<int, 3> lo{}, hi{};
+    for (int d = 0; d < 3; ++d) {
+      if (2 * e[d] >= size[d]) {
+        lo[static_cast<std::size_t>(d)] = 0;
+        hi[static_cast<std::size_t>(d)] = n[static_cast<std::size_t>(d)] - 1;
+      } else {
+        lo[static_cast<std::size_t>(d)] = static_cast<int>(std::floor((inc.center[d] - e[d]) / h[d] - 0.5)) - 1;
+        hi[static_cast<std::size_t>(d)] = static_cast<int>(std::ceil((inc.center[d] + e[d]) / h[d] - 0.5)) + 1;
+      }
+      // never visit a voxel twice (threads write disjoint voxels)
+      if (hi[static_cast<std::size_t>(d)] - lo[static_cast<std::size_t>(d)] + 1 >= n[static_cast<std::size_t>(d)]) {
+        lo[static_cast<std::size_t>(d)] = 0;
+        hi[static_cast<std::size_t>(d)] = n[static_cast<std::size_t>(d)] - 1;
+      }
+    }
+    auto wrap = [](int i, int m) { return ((i % m) + m) % m; };
+#pragma omp parallel for schedule(static)
+    for (int i = lo[0]; i <= hi[0]; ++i)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int k = lo[2]; k <= hi[2]; ++k) {
+          const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
+          if (inc.contains(p, size)) {
+            const std::size_t idx = (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
+                                     static_cast<std::size_t>(wrap(j, n[1]))) * static_cast<std::size_t>(n[2]) +
+                                    static_cast<std::size_t>(wrap(k, n[2]));
+            map[idx] = inc.phase;
+          }
+        }
+  }
+  return map;
+}
+
+UnitCell buildCell(const CellSpec& spec, std::array<int, 3> n) {
+  if (n[0] == 0 && n[1] == 0 && n[2] == 0)
+    n = spec.resolution;
+  for (int d : n)
+    LAMINA_CHECK(d >= 2, "resolution must be at least 2 voxels per direction");
+  UnitCell cell;
+  cell.n = n;
+  cell.size = spec.size;
+  cell.phase_count = static_cast<int>(spec.phases.size());
+  cell.inclusions = placeInclusions(spec, cell.target_fraction, cell.analytic_fraction);
+  cell.phase = voxelize(cell.inclusions, n, spec.size);
+  cell.countFractions();
+  return cell;
+}
+
+} // namespace lamina::micro

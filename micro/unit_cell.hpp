@@ -1,0 +1,57 @@
+#pragma once
+/// @file unit_cell.hpp
+/// @brief A voxel unit cell: inclusions placed from a CellSpec and the phase
+/// map sampled at voxel centres.
+///
+/// Contract: placement is done in continuous coordinates and does not depend
+/// on the resolution, so refining the grid refines the same geometry. With a
+/// target volume fraction the group's lengths are scaled uniformly so that
+/// its copies reach the target exactly (analytic volumes); the voxel fraction
+/// actually reached is reported in UnitCell::voxel_fraction.
+
+#include "micro/cell.hpp"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace lamina::micro {
+
+/// A unit cell with its phase map.
+struct UnitCell {
+  std::array<int, 3> n{0, 0, 0};   ///< voxels along x, y, z
+  Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths
+  std::vector<std::int32_t> phase; ///< phase index per voxel, C order, x slowest: (i*n1+j)*n2+k
+  std::vector<Inclusion> inclusions; ///< every placed inclusion
+  std::vector<double> target_fraction;   ///< per group: the requested fraction (NaN if none)
+  std::vector<double> analytic_fraction; ///< per group: analytic volume / cell volume
+  std::vector<double> voxel_fraction;    ///< per phase: fraction of voxels
+  int phase_count = 0;             ///< number of phases
+
+  /// @return the number of voxels
+  std::size_t voxels() const { return phase.size(); }
+  /// @return the linear index of voxel (i, j, k)
+  std::size_t index(int i, int j, int k) const {
+    return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n[1]) +
+            static_cast<std::size_t>(j)) * static_cast<std::size_t>(n[2]) + static_cast<std::size_t>(k);
+  }
+  /// Recomputes voxel_fraction from the phase map.
+  void countFractions();
+};
+
+/// Places the inclusions of @p spec and samples the phase map at resolution
+/// @p n (the spec's resolution if all zero). Throws lamina::Error naming the
+/// file and group when an inclusion does not fit in the cell or random
+/// placement fails to reach the target.
+UnitCell buildCell(const CellSpec& spec, std::array<int, 3> n = {0, 0, 0});
+
+/// Places the inclusions only (continuous geometry); used by buildCell.
+std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>& target,
+                                       std::vector<double>& analytic);
+
+/// Samples a phase map from placed inclusions: voxel centre inside an
+/// inclusion -> its phase, else phase 0.
+std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
+                                   const std::array<int, 3>& n, const Eigen::Vector3d& size);
+
+} // namespace lamina::micro
