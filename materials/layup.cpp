@@ -37,27 +37,33 @@ Material makeLayup(const std::string& name, const std::vector<Ply>& plies,
                    const MaterialLookup& lookup) {
   if (plies.empty())
     throw Error("a layup needs at least one ply", {"", 0, name});
-  Matrix6 sum = Matrix6::Zero();
-  double h = 0, mass = 0;
-  toml::array plyText;
+  double h = 0;
   for (const Ply& p : plies) {
     if (!(p.thickness > 0) || !std::isfinite(p.thickness))
       throw Error("ply thickness must be positive (m), got " + core::formatShort(p.thickness),
                   {"", 0, name + ": ply " + p.material});
+    h += p.thickness;
+  }
+  Matrix6 sum = Matrix6::Zero();
+  double mass = 0;
+  toml::array plyText;
+  for (const Ply& p : plies) {
     const Material m = lookup(p.material);
     // D = sum h_k R_k D_k R_k^T / h (DESIGN.md, "Layered membranes"): the same
     // strain acts through the thickness, so stiffnesses add by thickness.
-    sum += p.thickness * m.C.rotated(axisRotationDegrees(2, p.angle_deg)).matrix();
-    mass += p.thickness * m.density;
-    h += p.thickness;
+    // Weights w_k = h_k / h are formed first so that one ply (w = 1) or two equal
+    // plies of any thickness (w = 1/2) average without rounding.
+    const double w = p.thickness / h;
+    sum += w * m.C.rotated(axisRotationDegrees(2, p.angle_deg)).matrix();
+    mass += w * m.density;
     plyText.push_back(p.material + ":" + core::formatShort(p.angle_deg, 17) + ":" +
                       core::formatShort(p.thickness, 17));
   }
   Material out;
   out.name = name;
   out.kind = "layup";
-  out.C = Stiffness(sum / h).symmetrized();
-  out.density = mass / h;
+  out.C = Stiffness(sum).symmetrized();
+  out.density = mass;
   out.thickness = h;
   out.plies = plies;
   out.provenance.insert("method", "exact thickness average D = sum h_k R_k D_k R_k^T / h");

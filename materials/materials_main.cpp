@@ -140,7 +140,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : lamina::kExitUsage;
+    if (e.get_exit_code() == 0) // --help: CLI11 prints the help text
+      return app.exit(e);
+    // One line on stderr (CLI11's default adds a second "Run with --help" line).
+    std::cerr << "materials: error: " << e.what() << " (see --help)\n";
+    return lamina::kExitUsage;
   }
 
   try {

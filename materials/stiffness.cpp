@@ -98,10 +98,20 @@ EngineeringConstants Stiffness::engineering() const {
 }
 
 Stiffness Stiffness::rotated(const Eigen::Matrix3d& R) const {
-  // In Mandel form the fourth-order rotation is an orthogonal 6x6 matrix Q:
-  // C'_M = Q C_M Q^T. Converting at this boundary keeps the algebra exact.
-  const Matrix6 q = mandelRotation(R);
-  return Stiffness(fromMandel(q * toMandel(c_) * q.transpose()));
+  // Bond stress transformation in lamina order: sigma'_ij = R_ik R_jl sigma_kl
+  // reads sigma' = T sigma with T(a, b) = R_ik R_jl (+ R_il R_jk for a shear
+  // column b = (k, l), k != l); energy invariance gives C' = T C T^T. T holds
+  // only products of entries of R (no sqrt(2) scaling as in Mandel form), so
+  // an exact R (multiples of 90 degrees) gives an exact signed permutation.
+  Matrix6 t;
+  for (int a = 0; a < 6; ++a) {
+    const auto [i, j] = kLaminaPairs[static_cast<std::size_t>(a)];
+    for (int b = 0; b < 6; ++b) {
+      const auto [k, l] = kLaminaPairs[static_cast<std::size_t>(b)];
+      t(a, b) = k == l ? R(i, k) * R(j, l) : R(i, k) * R(j, l) + R(i, l) * R(j, k);
+    }
+  }
+  return Stiffness(t * c_ * t.transpose());
 }
 
 Eigen::Matrix3d axisRotation(int axis, double radians) {

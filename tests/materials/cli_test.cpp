@@ -1,0 +1,311 @@
+// The `materials` program end to end, with a temporary library: Table 1 of
+// the membrane paper through `add` + `show --json`, 21 constants in the
+// documented order, a [0/90] layup equal to the hand average, export cards
+// in the manuals' field orders, and concurrent writers (two processes, two
+// shells) whose entries all land in the file.
+
+#include "core/format.hpp"
+#include "materials/conversions.hpp"
+#include "materials/library.hpp"
+#include "test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace mat = lamina::materials;
+using lamina::test::runMaterials;
+using lamina::test::TempDir;
+
+namespace {
+
+constexpr double GPa = 1e9;
+
+mat::Matrix6 table1() {
+  mat::Matrix6 c = mat::Matrix6::Zero();
+  c(0, 0) = c(1, 1) = c(2, 2) = 150 * GPa;
+  c(0, 1) = c(1, 0) = 40 * GPa;
+  c(0, 2) = c(2, 0) = 10 * GPa;
+  c(1, 2) = c(2, 1) = 80 * GPa;
+  c(3, 3) = 80 * GPa;
+  c(4, 4) = 20 * GPa;
+  c(5, 5) = 30 * GPa;
+  return c;
+}
+
+mat::Matrix6 jsonMatrix(const nlohmann::json& j) {
+  mat::Matrix6 c;
+  EXPECT_EQ(j.size(), 6u);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(j.at(i).size(), 6u);
+    for (int k = 0; k < 6; ++k)
+      c(i, k) = j.at(i).at(k).get<double>();
+  }
+  return c;
+}
+
+// The numbers of the card lines between the line starting with @p start and
+// the next keyword line ('*').
+std::vector<double> cardNumbers(const std::string& card, const std::string& start) {
+  std::vector<double> out;
+  std::istringstream in(card);
+  std::string line;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (line.rfind(start, 0) == 0) {
+      inside = true;
+      continue;
+    }
+    if (!inside || line.empty() || line.rfind("**", 0) == 0)
+      continue;
+    if (line[0] == '*')
+      break;
+    std::istringstream items(line);
+    std::string item;
+    while (std::getline(items, item, ','))
+      out.push_back(std::stod(item));
+  }
+  return out;
+}
+
+class MaterialsProgram : public ::testing::Test {
+protected:
+  lamina::test::RunResult run(const std::string& args) { return runMaterials(dir_, lib_, args); }
+  nlohmann::json showJson(const std::string& name) {
+    const auto r = run("show '" + name + "' --json");
+    EXPECT_EQ(r.status, 0) << r.err;
+    return nlohmann::json::parse(r.out);
+  }
+  TempDir dir_;
+  std::filesystem::path lib_ = dir_ / "library.toml";
+};
+
+} // namespace
+
+// Done-when of issue 2: `materials show` of the Table 1 material in --json
+// reproduces the table (c11 = 150, c12 = 40, c13 = 10, c22 = 150, c23 = 80,
+// c33 = 150, c44 = 80, c55 = 20, c66 = 30 GPa, zeros elsewhere) exactly.
+TEST_F(MaterialsProgram, Table1ShowJsonReproducesTheTable) {
+  const auto r = run("add t1 --from-catalog table1-anisotropic");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = showJson("t1");
+  EXPECT_EQ(j.at("name"), "t1");
+  EXPECT_EQ(jsonMatrix(j.at("C")), table1());
+  EXPECT_EQ(j.at("kind"), "catalog");
+  EXPECT_EQ(j.at("symmetry"), "orthotropic");
+  EXPECT_GT(j.at("density").get<double>(), 0);
+  // G12 = c44, G23 = c55, G13 = c66 for this block-diagonal tensor (1e-15:
+  // inverse of an inverse).
+  EXPECT_NEAR(j.at("engineering").at("G23").get<double>(), 20 * GPa, 1e-15 * 20 * GPa);
+  EXPECT_EQ(j.at("provenance").at("catalog_key"), "table1-anisotropic");
+}
+
+// `add --constants` takes the upper triangle row by row in lamina order;
+// written with 17 digits they come back bit-identical from `show --json`.
+TEST_F(MaterialsProgram, AddConstantsRoundTripsInDocumentedOrder) {
+  std::mt19937_64 rng(99);
+  const mat::Stiffness c(lamina::test::randomSpd(rng));
+  std::string text;
+  for (double v : c.upperTriangle())
+    text += (text.empty() ? "" : ",") + lamina::core::formatExact(v);
+  const double rho = 1234.5678901234567;
+  const auto r = run("add rnd --constants " + text + " --density " + lamina::core::formatExact(rho));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = showJson("rnd");
+  const mat::Matrix6 back = jsonMatrix(j.at("C"));
+  EXPECT_EQ(back, c.matrix());
+  EXPECT_EQ(back(0, 5), c.upperTriangle()[5]); // constant #6 is C16
+  EXPECT_EQ(back(1, 1), c.upperTriangle()[6]); // constant #7 is C22
+  EXPECT_EQ(j.at("density").get<double>(), rho);
+  EXPECT_EQ(j.at("kind"), "constants");
+  EXPECT_EQ(j.at("symmetry"), "triclinic");
+  // And through the library API, from the file itself.
+  EXPECT_EQ(mat::Library(lib_).get("rnd").C.matrix(), c.matrix());
+}
+
+// Done-when of issue 2: a [0/90] layup of Table 1 gives the exact averaged D:
+// C11 = C22 = 150, C13 = C23 = (10 + 80)/2, C55 = C66 = (20 + 30)/2,
+// C44 = 80 GPa. Thicknesses 2^-10 m make every operation exact.
+TEST_F(MaterialsProgram, LayupZeroNinetyEqualsHandAverage) {
+  ASSERT_EQ(run("add t1 --from-catalog table1-anisotropic").status, 0);
+  const auto r = run("layup cross --ply t1:0:0.0009765625 --ply t1:90:0.0009765625");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json j = showJson("cross");
+  const mat::Matrix6 c = jsonMatrix(j.at("C"));
+  EXPECT_EQ(c(0, 0), 150 * GPa);
+  EXPECT_EQ(c(1, 1), 150 * GPa);
+  EXPECT_EQ(c(2, 2), 150 * GPa);
+  EXPECT_EQ(c(0, 1), 40 * GPa);
+  EXPECT_EQ(c(0, 2), 45 * GPa);
+  EXPECT_EQ(c(1, 2), 45 * GPa);
+  EXPECT_EQ(c(3, 3), 80 * GPa);
+  EXPECT_EQ(c(4, 4), 25 * GPa);
+  EXPECT_EQ(c(5, 5), 25 * GPa);
+  EXPECT_EQ(c(3, 4), 0.0);
+  EXPECT_EQ(c(0, 3), 0.0);
+  EXPECT_EQ(j.at("thickness").get<double>(), 0.001953125);
+  EXPECT_EQ(j.at("density"), showJson("t1").at("density"));
+  EXPECT_EQ(j.at("kind"), "layup");
+  EXPECT_EQ(j.at("plies").size(), 2u);
+  // A ply may also name a catalog key directly.
+  ASSERT_EQ(run("layup direct --ply table1-anisotropic:0:0.0009765625 "
+                "--ply table1-anisotropic:90:0.0009765625")
+                .status,
+            0);
+  EXPECT_EQ(jsonMatrix(showJson("direct").at("C")), c);
+}
+
+// Abaqus *ELASTIC, TYPE=ANISOTROPIC lists D1111 D1122 D2222 D1133 D2233
+// D3333 D1112 D2212 D3312 D1212 D1113 D2213 D3313 D1213 D1313 D1123 D2223
+// D3323 D1223 D1323 D2323: for Table 1, #10 D1212 = xy = 80, #15 D1313 =
+// xz = 30, #21 D2323 = yz = 20 GPa.
+TEST_F(MaterialsProgram, AbaqusAndCalculixCardsFollowManualOrder) {
+  ASSERT_EQ(run("add t1 --from-catalog table1-anisotropic").status, 0);
+  for (const auto& [format, keyword] : {std::pair<std::string, std::string>{"abaqus", "*ELASTIC, TYPE=ANISOTROPIC"},
+                                        {"calculix", "*ELASTIC, TYPE=ANISO"}}) {
+    const auto r = run("export t1 --format " + format);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<double> v = cardNumbers(r.out, keyword);
+    ASSERT_EQ(v.size(), 21u) << r.out;
+    const double expected[21] = {150, 40, 150, 10, 80, 150, 0, 0, 0, 80, 0,
+                                 0,   0,  0,   30, 0,  0,  0, 0, 0, 20};
+    for (int k = 0; k < 21; ++k)
+      EXPECT_EQ(v[static_cast<std::size_t>(k)], expected[k] * GPa) << format << " value #" << k + 1;
+    const std::vector<double> rho = cardNumbers(r.out, "*DENSITY");
+    ASSERT_EQ(rho.size(), 1u);
+    EXPECT_EQ(rho[0], 1600.0);
+  }
+}
+
+// LS-DYNA *MAT_ANISOTROPIC_ELASTIC card 1: MID RO C11 C12 C22 C13 C23 C33,
+// card 2: C14 C24 C34 C44 C15 C25 C35 C45, card 3: C55 C16 C26 C36 C46 C56
+// C66 AOPT, order xx yy zz xy yz zx: C44 = 80, C55 = 20, C66 = 30 GPa.
+TEST_F(MaterialsProgram, LsdynaCardFollowsManualOrder) {
+  ASSERT_EQ(run("add t1 --from-catalog table1-anisotropic").status, 0);
+  const auto r = run("export t1 --format lsdyna");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::vector<double>> cards;
+  std::istringstream in(r.out);
+  std::string line;
+  bool started = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("*MAT_ANISOTROPIC_ELASTIC", 0) == 0) {
+      started = true;
+      std::getline(in, line); // title line
+      continue;
+    }
+    if (!started || line.empty() || line[0] == '$')
+      continue;
+    std::vector<double> values;
+    std::istringstream items(line);
+    std::string item;
+    while (std::getline(items, item, ','))
+      values.push_back(std::stod(item));
+    cards.push_back(values);
+  }
+  ASSERT_GE(cards.size(), 3u) << r.out;
+  ASSERT_EQ(cards[0].size(), 8u);
+  ASSERT_EQ(cards[1].size(), 8u);
+  ASSERT_EQ(cards[2].size(), 8u);
+  EXPECT_EQ(cards[0][1], 1600.0); // RO
+  const double c1[6] = {150, 40, 150, 10, 80, 150};
+  for (int k = 0; k < 6; ++k)
+    EXPECT_EQ(cards[0][static_cast<std::size_t>(k + 2)], c1[k] * GPa);
+  const double c2[8] = {0, 0, 0, 80, 0, 0, 0, 0};
+  for (int k = 0; k < 8; ++k)
+    EXPECT_EQ(cards[1][static_cast<std::size_t>(k)], c2[k] * GPa);
+  const double c3[7] = {20, 0, 0, 0, 0, 0, 30};
+  for (int k = 0; k < 7; ++k)
+    EXPECT_EQ(cards[2][static_cast<std::size_t>(k)], c3[k] * GPa);
+  EXPECT_EQ(cards[2][7], 2.0); // AOPT = 2: material axes from A = x, D = y
+}
+
+TEST_F(MaterialsProgram, ExportJsonEqualsShowJson) {
+  ASSERT_EQ(run("add glass --from-catalog e-glass").status, 0);
+  const auto r = run("export glass --format json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out), showJson("glass"));
+}
+
+TEST_F(MaterialsProgram, ListAndRemove) {
+  ASSERT_EQ(run("add a --from-catalog e-glass").status, 0);
+  ASSERT_EQ(run("add b --from-catalog aramid").status, 0);
+  auto r = run("list");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("a  catalog  isotropic"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("b  catalog  transversely isotropic"), std::string::npos) << r.out;
+  ASSERT_EQ(run("remove a").status, 0);
+  EXPECT_EQ(mat::Library(lib_).names(), std::vector<std::string>{"b"});
+  // The human table prints as well.
+  r = run("show b");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("transversely isotropic (axis x)"), std::string::npos) << r.out;
+}
+
+// Two processes each add 20 entries at once through Library::add (forked
+// children): the lock serializes the read-modify-write cycles, so all 40 land.
+TEST(ConcurrentWriters, ForkedProcessesBothLand) {
+  TempDir dir;
+  const auto path = dir / "library.toml";
+  const int perChild = 20;
+  std::vector<pid_t> kids;
+  for (const char* prefix : {"left", "right"}) {
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      int rc = 0;
+      try {
+        for (int k = 0; k < perChild; ++k) {
+          mat::Material m;
+          m.name = std::string(prefix) + std::to_string(k);
+          m.C = mat::Stiffness::isotropic(1e9 * (k + 1), 0.25);
+          m.density = 1000 + k;
+          mat::Library(path).add(m);
+        }
+      } catch (...) {
+        rc = 1;
+      }
+      ::_exit(rc);
+    }
+    kids.push_back(pid);
+  }
+  for (pid_t pid : kids) {
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  }
+  const mat::Library lib(path);
+  EXPECT_EQ(lib.names().size(), static_cast<std::size_t>(2 * perChild));
+  for (int k = 0; k < perChild; ++k) {
+    EXPECT_TRUE(lib.contains("left" + std::to_string(k)));
+    EXPECT_TRUE(lib.contains("right" + std::to_string(k)));
+  }
+  EXPECT_EQ(lib.get("right7").density, 1007.0);
+}
+
+// Two shells run `materials add` 20 times each, concurrently: 40 entries.
+TEST(ConcurrentWriters, TwoMaterialsCommandsBothLand) {
+  TempDir dir;
+  const auto path = dir / "library.toml";
+  const std::string prog = lamina::test::materialsProgram();
+  const std::string iso = // steel-like isotropic constants, upper triangle row by row
+      "2.8e11,1.2e11,1.2e11,0,0,0,2.8e11,1.2e11,0,0,0,2.8e11,0,0,0,8e10,0,0,8e10,0,8e10";
+  auto loop = [&](const std::string& prefix) {
+    return "( for i in $(seq 1 20); do '" + prog + "' --library '" + path.string() + "' add " +
+           prefix + "$i --constants " + iso + " --density 7850 2>/dev/null || echo FAIL" +
+           prefix + "$i; done )";
+  };
+  const std::string cmd = loop("p") + " > '" + (dir / "p.out").string() + "' & " + loop("q") +
+                          " > '" + (dir / "q.out").string() + "' & wait";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  EXPECT_EQ(lamina::test::readFile(dir / "p.out"), "");
+  EXPECT_EQ(lamina::test::readFile(dir / "q.out"), "");
+  const mat::Library lib(path);
+  EXPECT_EQ(lib.names().size(), 40u);
+  for (int k = 1; k <= 20; ++k) {
+    EXPECT_TRUE(lib.contains("p" + std::to_string(k)));
+    EXPECT_TRUE(lib.contains("q" + std::to_string(k)));
+  }
+}

@@ -1,0 +1,130 @@
+#pragma once
+/// @file test_support.hpp
+/// @brief Helpers shared by the materials test suites: temporary directories,
+/// random SPD stiffnesses and rotations, relative differences, and running the
+/// `materials` program as a child process.
+
+#include "materials/stiffness.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace lamina::test {
+
+/// A fresh directory under the system temporary directory, removed with its
+/// content when the object dies.
+class TempDir {
+public:
+  TempDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "lamina-test-XXXXXX").string();
+    if (!::mkdtemp(tmpl.data()))
+      throw std::runtime_error("mkdtemp failed");
+    path_ = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  /// @return the directory
+  const std::filesystem::path& path() const { return path_; }
+  /// @return the path of @p name inside the directory
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+private:
+  std::filesystem::path path_;
+};
+
+/// @return the whole content of @p path ("" if it does not exist)
+inline std::string readFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// Writes @p text to @p path (plain write: test set-up only).
+inline void writeFile(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+/// A random symmetric positive definite 6x6 matrix with no zero pattern
+/// (triclinic), entries of order 1e10 Pa: A A^T + 2 I scaled, A uniform in (-1, 1).
+inline materials::Matrix6 randomSpd(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  materials::Matrix6 a;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      a(i, j) = u(rng);
+  materials::Matrix6 c = a * a.transpose() + 2.0 * materials::Matrix6::Identity();
+  c = 0.5 * (c + c.transpose()).eval();
+  return 1e10 * c;
+}
+
+/// A random proper rotation (normalized random quaternion).
+inline Eigen::Matrix3d randomRotation(std::mt19937_64& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::Quaterniond q(n(rng), n(rng), n(rng), n(rng));
+  q.normalize();
+  return q.toRotationMatrix();
+}
+
+/// @return max |a - b| / max |b| (0 when both vanish)
+inline double relDiff(const materials::Matrix6& a, const materials::Matrix6& b) {
+  const double scale = b.cwiseAbs().maxCoeff();
+  const double d = (a - b).cwiseAbs().maxCoeff();
+  return scale > 0 ? d / scale : d;
+}
+
+/// Result of running a program.
+struct RunResult {
+  int status = -1;  ///< exit code (-1 if it did not exit normally)
+  std::string out;  ///< its standard output
+  std::string err;  ///< its standard error
+};
+
+/// Path of the `materials` program of this build.
+inline std::string materialsProgram() { return std::string(LAMINA_BINARY_DIR) + "/bin/materials"; }
+
+/// Path of the source tree's catalog.
+inline std::string catalogPath() { return std::string(LAMINA_SOURCE_DIR) + "/materials/catalog.toml"; }
+
+/// Runs `materials --library LIB --catalog CATALOG ARGS` through the shell,
+/// capturing stdout and stderr in files of @p dir. Arguments must not need
+/// quoting beyond single quotes (test paths and names are plain).
+inline RunResult runMaterials(const TempDir& dir, const std::filesystem::path& library,
+                              const std::string& args) {
+  static int counter = 0;
+  const std::string tag = std::to_string(counter++);
+  const auto out = dir / ("stdout." + tag), err = dir / ("stderr." + tag);
+  const std::string cmd = "'" + materialsProgram() + "' --library '" + library.string() +
+                          "' --catalog '" + catalogPath() + "' " + args + " > '" + out.string() +
+                          "' 2> '" + err.string() + "'";
+  const int raw = std::system(cmd.c_str());
+  RunResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = readFile(out);
+  r.err = readFile(err);
+  return r;
+}
+
+/// Number of lines of @p text ('\n'-terminated; a trailing partial line counts).
+inline int lineCount(const std::string& text) {
+  int n = 0;
+  for (char ch : text)
+    n += ch == '\n';
+  if (!text.empty() && text.back() != '\n')
+    ++n;
+  return n;
+}
+
+} // namespace lamina::test
