@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -59,9 +60,30 @@ void applyOverride(toml::table& doc, const std::string& assignment) {
   std::size_t start = 0;
   while (true) {
     const auto dot = key.find('.', start);
-    const std::string part = key.substr(start, dot == std::string::npos ? dot : dot - start);
+    std::string part = key.substr(start, dot == std::string::npos ? dot : dot - start);
+    // "name[i]" addresses element i of an array of tables ([[name]]).
+    long index = -1;
+    if (const auto br = part.find('['); br != std::string::npos) {
+      char* end = nullptr;
+      index = std::strtol(part.c_str() + br + 1, &end, 10);
+      if (index < 0 || *end != ']' || end[1] != '\0')
+        throw Error("malformed array index in override", {"--set", 0, key});
+      part = part.substr(0, br);
+    }
     if (part.empty())
       throw Error("empty key component in override", {"--set", 0, key});
+    if (index >= 0) {
+      toml::array* arr = t->get(part) ? t->get(part)->as_array() : nullptr;
+      if (!arr || static_cast<std::size_t>(index) >= arr->size() ||
+          !(*arr)[static_cast<std::size_t>(index)].is_table())
+        throw Error("override names a missing [[" + part + "]] element", {"--set", 0, key});
+      toml::table* elem = (*arr)[static_cast<std::size_t>(index)].as_table();
+      if (dot == std::string::npos)
+        throw Error("override must name a key inside [[" + part + "]]", {"--set", 0, key});
+      t = elem;
+      start = dot + 1;
+      continue;
+    }
     if (dot == std::string::npos) {
       t->insert_or_assign(part, *parsed.get("v"));
       return;

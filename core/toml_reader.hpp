@@ -31,7 +31,8 @@ toml::table parseTomlString(std::string_view text, const std::string& source_nam
 /// Applies a command-line override "a.b.c=value" to @p doc. The value is
 /// parsed as a TOML value (number, bool, string in quotes, array); a bare word
 /// that is not valid TOML is taken as a string. Intermediate tables are
-/// created. Throws lamina::Error on a malformed override.
+/// created; "name[i].key" addresses element i of an array of tables
+/// (`[[name]]`). Throws lamina::Error on a malformed override.
 void applyOverride(toml::table& doc, const std::string& assignment);
 
 /// Strict, recording view of one TOML table. Copies share the record of
