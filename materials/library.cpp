@@ -5,6 +5,7 @@
 #include "core/format.hpp"
 #include "core/toml_reader.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -120,13 +121,21 @@ Material readEntry(const core::TableReader& t, const std::string& name) {
   if (t.has("thickness"))
     m.thickness = t.getDouble("thickness");
   m.side_file = t.getString("side_file", "");
-  for (const core::TableReader& p : t.tableArray("plies"))
+  for (const core::TableReader& p : t.tableArray("plies")) {
     m.plies.push_back({p.getString("material"), p.getDouble("angle_deg"), p.getDouble("thickness")});
+    if (!(m.plies.back().thickness > 0))
+      p.fail("thickness", "ply thickness must be positive (m)");
+  }
   if (const toml::node* prov = t.raw("provenance")) {
     if (!prov->is_table())
       t.fail("provenance", "expected a table");
     m.provenance = *prov->as_table();
   }
+  // Name the key at fault: density and thickness here, the stiffness below.
+  if (!(m.density > 0) || !std::isfinite(m.density))
+    t.fail("density", "density must be positive and finite (kg/m^3)");
+  if (m.thickness && (!(*m.thickness > 0) || !std::isfinite(*m.thickness)))
+    t.fail("thickness", "thickness must be positive and finite (m)");
   try {
     validate(m);
   } catch (const Error& e) {

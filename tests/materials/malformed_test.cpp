@@ -109,6 +109,26 @@ TEST_F(LibraryFile, NonPositiveDefiniteEntryNamesFileAndEntry) {
   EXPECT_NE(msg.find("positive definite"), std::string::npos) << msg;
 }
 
+// A bad density is blamed on the density key and its line (6), not on C.
+TEST_F(LibraryFile, BadDensityNamesTheDensityKey) {
+  for (const char* bad : {"-7850.0", "0.0", "nan", "inf"}) {
+    std::string text = kHeader + kEntry;
+    text.replace(text.find("7850.0"), 6, bad);
+    const std::string msg = load(text);
+    EXPECT_NE(msg.find(path_.string() + ":6: 'materials.steel.density'"), std::string::npos)
+        << bad << ": " << msg;
+  }
+}
+
+TEST_F(LibraryFile, BadThicknessNamesTheKey) {
+  std::string text = kHeader + kEntry + "thickness = -1e-3\n"; // line 15
+  std::string msg = load(text);
+  EXPECT_NE(msg.find(path_.string() + ":15: 'materials.steel.thickness'"), std::string::npos) << msg;
+  text = kHeader + kEntry + "plies = [{ material = \"a\", angle_deg = 0.0, thickness = 0.0 }]\n";
+  msg = load(text);
+  EXPECT_NE(msg.find("'materials.steel.plies[0].thickness'"), std::string::npos) << msg;
+}
+
 TEST_F(LibraryFile, UnknownKindNamesTheKey) {
   std::string text = kHeader + kEntry;
   text.replace(text.find("\"catalog\""), 9, "\"magic\"");
