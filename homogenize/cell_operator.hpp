@@ -54,14 +54,15 @@ public:
   const Grid& grid() const { return grid_; }
 
 private:
-  void stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S,
-                   double* acc) const;
-  void divergencePlane(int i, const double* prev, const double* cur, double* f) const;
+  void stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S, double* acc,
+                   double* scratch) const;
+  void divergencePlane(int i, const double* prev, const double* cur, double* f,
+                       double* scratch) const;
 
   Grid grid_;
   std::vector<std::int32_t> phase_;
   std::vector<double> C_; // 36 per phase, row-major, lamina order
-  mutable std::vector<double> planes_; // two voxel planes of stress (6 per voxel)
+  mutable std::vector<double> planes_; // per thread: two voxel planes of stress (6 per voxel)
 };
 
 } // namespace lamina::homogenize

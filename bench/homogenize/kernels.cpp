@@ -1,0 +1,64 @@
+// Times the building blocks of one CG iteration of the homogenizer at N^3:
+// the stiffness operator (A p), the Green preconditioner (3 r2c + 3 c2r
+// FFTs and the closed-form 3x3 solve) and the FFT pair alone.
+// Usage: homogenize_kernels N THREADS [measure]
+#include "homogenize/cell_operator.hpp"
+#include "homogenize/fft.hpp"
+#include "homogenize/green_operator.hpp"
+#include "micro/inclusion.hpp"
+#include "micro/unit_cell.hpp"
+
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+using namespace lamina;
+
+int main(int argc, char** argv) {
+  const int N = argc > 1 ? std::atoi(argv[1]) : 128;
+  const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
+  const bool measure = argc > 3 && std::strcmp(argv[3], "measure") == 0;
+  omp_set_num_threads(threads);
+  homogenize::Grid g;
+  g.n = {N, N, N};
+  g.h = {1.0 / N, 1.0 / N, 1.0 / N};
+  micro::Inclusion s;
+  s.phase = 1;
+  s.semi.setConstant(0.357);
+  s.center = Eigen::Vector3d(0.5, 0.5, 0.5);
+  const auto map = micro::voxelize({s}, g.n, Eigen::Vector3d::Ones());
+  const std::vector<materials::Stiffness> C{materials::Stiffness::isotropic(156e6, 0.494),
+                                            materials::Stiffness::isotropic(890e6, 0.491)};
+  auto t0 = std::chrono::steady_clock::now();
+  homogenize::VectorFft fft(g, threads, measure);
+  const double plan_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  homogenize::CellOperator A(g, map, C);
+  homogenize::GreenOperator M(g, 1e9, 1e8, fft);
+  homogenize::AlignedBuffer u(3 * g.size()), f(3 * g.size());
+  for (std::size_t i = 0; i < u.size(); ++i)
+    u.data()[i] = std::sin(0.001 * static_cast<double>(i));
+  const std::array<double, 6> E{0, 0, 0, 0, 0, 0};
+  auto time = [&](const char* what, auto&& fn) {
+    fn();
+    const int reps = 10;
+    const auto a = std::chrono::steady_clock::now();
+    for (int r = 0; r < reps; ++r)
+      fn();
+    const double ms =
+        1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count() / reps;
+    std::printf("%-28s %8.2f ms\n", what, ms);
+  };
+  std::printf("N = %d, threads = %d, planning %s: %.2f s\n", N, threads,
+              measure ? "FFTW_MEASURE" : "FFTW_ESTIMATE", plan_s);
+  time("operator A p", [&] { A.apply(u.data(), E, f.data(), nullptr); });
+  time("preconditioner M r", [&] { M.apply(u.data(), f.data()); });
+  time("3 x (r2c + c2r)", [&] {
+    fft.forward(u.data(), fft.work());
+    fft.backward(fft.work(), f.data());
+  });
+  return 0;
+}
