@@ -47,16 +47,15 @@ def plot_speed(run_dir, title):
         speeds = [f[f"/steps/{steps[k]}/speed"][()] for k in picks]
     triang = mtri.Triangulation(xyz[:, 0], xyz[:, 1], tri)
     vmax = max(float(np.max(s)) for s in speeds) or 1.0
-    fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.0), constrained_layout=True)
+    fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.4), constrained_layout=True)
     axes = np.atleast_1d(axes)
     for ax, k, s in zip(axes, picks, speeds):
         pc = ax.tripcolor(triang, s, shading="gouraud", cmap="inferno", vmin=0.0, vmax=vmax)
         ax.set_aspect("equal")
-        ax.set_title(f"t = {times[k] * 1e6:.3g} us")
+        ax.set_title(f"{title}\nt = {times[k] * 1e6:.3g} us" if ax is axes[0] else f"\nt = {times[k] * 1e6:.3g} us", fontsize=10)
         ax.set_xlabel("x (m)")
         ax.set_ylabel("y (m)")
     fig.colorbar(pc, ax=axes.tolist(), label="|v| (m/s)", shrink=0.85)
-    fig.suptitle(title)
     out = os.path.join(run_dir, "speed.png")
     fig.savefig(out, dpi=110)
     plt.close(fig)
