@@ -94,7 +94,7 @@ GlobalMatrices assemble(const Mesh& mesh, const std::vector<Section>& sections, 
   double* kv = g.K.valuePtr();
   double* mv = g.M.valuePtr();
   const int* outer = g.K.outerIndexPtr();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (ne > 20000)
   for (int e = 0; e < ne; ++e) {
     const Section& s = sections[mesh.region_of[e]];
     const Matrix9 Ke = elementStiffness(mesh, e, s);

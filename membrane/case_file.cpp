@@ -27,7 +27,12 @@ public:
     auto& lib = library();
     if (lib.contains(name)) return lib.get(name);
     auto* cat = catalog();
-    if (cat && cat->contains(name)) return cat->get(name).toMaterial();
+    if (cat && cat->contains(name)) {
+      const auto& entry = cat->get(name);
+      auto m = entry.toMaterial();
+      if (!m.thickness) m.thickness = entry.nominal_thickness; // default section thickness
+      return m;
+    }
     std::string have;
     for (const auto& n : lib.names()) have += (have.empty() ? "" : ", ") + n;
     std::string cat_have;

@@ -231,6 +231,24 @@ Mesh readGmsh(const std::filesystem::path& path) {
   }
   if (m.triangles.empty())
     throw Error("mesh has no 3-node triangles", ErrorContext{file, 0, ""});
+  // Keep only nodes used by triangles (gmsh also returns e.g. circle centres).
+  std::vector<int> renum(m.nodes.size(), -1);
+  std::vector<Eigen::Vector2d> used;
+  for (auto& t : m.triangles)
+    for (int& i : t) {
+      if (renum[i] < 0) {
+        renum[i] = static_cast<int>(used.size());
+        used.push_back(m.nodes[i]);
+      }
+      i = renum[i];
+    }
+  m.nodes = std::move(used);
+  for (auto& [name, set] : m.node_sets) {
+    std::vector<int> kept;
+    for (int i : set)
+      if (renum[i] >= 0) kept.push_back(renum[i]);
+    set = std::move(kept);
+  }
   finalizeMesh(m);
   return m;
 }

@@ -33,18 +33,18 @@ public:
     for (long s = 1; s <= steps; ++s) {
       try {
         sim.step();
+        const bool last = s == steps;
+        const int fe = model_.output.field_every;
+        record(sim, last || (fe > 0 && s % fe == 0), last || s % model_.output.energy_every == 0);
       } catch (const DivergenceError& e) {
         failure = e;
         break;
       }
-      const bool last = s == steps;
-      const int fe = model_.output.field_every;
-      record(sim, last || (fe > 0 && s % fe == 0), last || s % model_.output.energy_every == 0);
       progress.update(s, "t = " + core::formatShort(sim.time(), 4));
     }
     step_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
     if (failure && fields_) fields_->write(sim.time(), sim.u(), sim.v()); // last finite state
-    if (failure) record(sim, false, true);
+    if (failure) record(sim, false, false);
     progress.finish();
     closeOutputs();
     wall_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -104,6 +104,22 @@ private:
     }
     if (energy) {
       last_energy_ = sim.energy();
+      if (!std::isfinite(last_energy_.kinetic + last_energy_.strain + last_energy_.reaction_work)) {
+        int worst = 0;
+        double big = -1;
+        for (int i = 0; i < n; ++i) {
+          const double s = u.segment<3>(3 * i).norm() + v.segment<3>(3 * i).norm();
+          if (!(s <= big)) {
+            big = s;
+            worst = i;
+          }
+        }
+        const auto& p = model_.mesh.nodes[worst];
+        throw DivergenceError("non-finite energy at t = " + core::formatShort(sim.time()) +
+                              " s (step " + std::to_string(sim.steps()) +
+                              "), largest motion at node " + std::to_string(worst) + " (" +
+                              core::formatShort(p.x()) + ", " + core::formatShort(p.y()) + ")");
+      }
       const auto& e = last_energy_;
       const double total = e.kinetic + e.strain;
       max_balance_ = std::max(max_balance_, std::abs(e.balance));

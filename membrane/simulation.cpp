@@ -193,7 +193,25 @@ void Simulation::step() {
     for (int d : cdofs_) tmp_[d] = ac_[d];
     Eigen::VectorXd previous;
     if (has_drag_) previous = a1_;
-    last_iterations_ += solver_->solve(tmp_, a1_);
+    try {
+      last_iterations_ += solver_->solve(tmp_, a1_);
+    } catch (const DivergenceError& e) {
+      // Name the time and the node moving most in the last finite state.
+      int worst = 0;
+      double big = -1;
+      for (int i = 0; i < ndof / 3; ++i) {
+        const double s = u_.segment<3>(3 * i).norm() + v_.segment<3>(3 * i).norm();
+        if (!(s <= big)) {
+          big = s;
+          worst = i;
+        }
+      }
+      const auto& p = model_.mesh.nodes[worst];
+      std::ostringstream os;
+      os << e.message() << " at t = " << t1 << " s (step " << n_ + 1
+         << "), largest motion at node " << worst << " (" << p.x() << ", " << p.y() << ")";
+      throw DivergenceError(os.str());
+    }
     if (!has_drag_) break;
     if ((a1_ - previous).norm() <= ts.drag_tolerance * (a1_.norm() + 1e-300)) break;
   }

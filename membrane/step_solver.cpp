@@ -11,6 +11,12 @@
 
 namespace lamina::membrane {
 
+namespace {
+/// Below this many rows threads cost more than they save (and a busy core
+/// turns every barrier into a scheduler time slice).
+constexpr int kParallelMin = 30000;
+} // namespace
+
 void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const int n = static_cast<int>(A.rows());
   y.resize(n);
@@ -19,7 +25,7 @@ void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& 
   const double* val = A.valuePtr();
   const double* xp = x.data();
   double* yp = y.data();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (int i = 0; i < n; ++i) {
     double s = 0;
     for (int k = outer[i]; k < outer[i + 1]; ++k) s += val[k] * xp[inner[k]];
@@ -95,7 +101,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   double rr = r_.squaredNorm();
   if (std::sqrt(rr) <= target) return;
   double rz = 0;
-#pragma omp parallel for reduction(+ : rz) schedule(static)
+#pragma omp parallel for reduction(+ : rz) schedule(static) if (n > kParallelMin)
   for (int i = 0; i < nn; ++i) {
     z_.segment<3>(3 * i) = block_inverse_[i] * r_.segment<3>(3 * i);
     rz += z_.segment<3>(3 * i).dot(r_.segment<3>(3 * i));
@@ -109,7 +115,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
     const double alpha = rz / pq;
     double rz_new = 0;
     rr = 0;
-#pragma omp parallel for reduction(+ : rz_new, rr) schedule(static)
+#pragma omp parallel for reduction(+ : rz_new, rr) schedule(static) if (n > kParallelMin)
     for (int i = 0; i < nn; ++i) {
       x.segment<3>(3 * i) += alpha * p_.segment<3>(3 * i);
       r_.segment<3>(3 * i) -= alpha * q_.segment<3>(3 * i);
@@ -120,7 +126,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
     if (std::sqrt(rr) <= target) return;
     const double beta = rz_new / rz;
     rz = rz_new;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n > kParallelMin)
     for (int i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];
   }
   throw DivergenceError("CG did not converge in " + std::to_string(max_iterations_) +
