@@ -4,12 +4,11 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "test_util.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
-#include <fstream>
-#include <sstream>
 #include <sys/file.h>
 #include <unistd.h>
 
@@ -17,26 +16,6 @@ namespace core = lamina::core;
 namespace fs = std::filesystem;
 
 namespace {
-
-struct TempDir {
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "lamina-core-XXXXXX").string();
-    EXPECT_NE(::mkdtemp(t.data()), nullptr);
-    path = t;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  fs::path path;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 int entries(const fs::path& dir) {
   int n = 0;
@@ -48,25 +27,25 @@ int entries(const fs::path& dir) {
 } // namespace
 
 TEST(AtomicFile, WritesThenReplacesContent) {
-  TempDir d;
-  const fs::path p = d.path / "sub" / "out.txt";
+  const lamina::test::TempDir d;
+  const fs::path p = d.path() / "sub" / "out.txt";
   core::writeFileAtomically(p, "first\n");
-  EXPECT_EQ(slurp(p), "first\n");
+  EXPECT_EQ(lamina::test::readFile(p), "first\n");
   std::string big(1 << 20, 'x'); // 1 MiB: several write() calls
   big[12345] = '\0';
   core::writeFileAtomically(p, big);
-  EXPECT_EQ(slurp(p), big);
+  EXPECT_EQ(lamina::test::readFile(p), big);
   core::writeFileAtomically(p, "");
-  EXPECT_EQ(slurp(p), "");
-  EXPECT_EQ(entries(d.path / "sub"), 1); // no temporary left beside it
+  EXPECT_EQ(lamina::test::readFile(p), "");
+  EXPECT_EQ(entries(d.path() / "sub"), 1); // no temporary left beside it
   EXPECT_EQ(fs::status(p).permissions() & fs::perms::owner_read, fs::perms::owner_read);
 }
 
 // Replacing a directory fails: the error names the target, the directory is
 // untouched and the temporary is removed.
 TEST(AtomicFile, FailedRenameKeepsTargetAndCleansUp) {
-  TempDir d;
-  const fs::path target = d.path / "occupied";
+  const lamina::test::TempDir d;
+  const fs::path target = d.path() / "occupied";
   fs::create_directories(target / "inside");
   try {
     core::writeFileAtomically(target, "data");
@@ -75,23 +54,23 @@ TEST(AtomicFile, FailedRenameKeepsTargetAndCleansUp) {
     EXPECT_EQ(e.context().file, target.string()) << e.what();
   }
   EXPECT_TRUE(fs::is_directory(target / "inside"));
-  EXPECT_EQ(entries(d.path), 1);
+  EXPECT_EQ(entries(d.path()), 1);
 }
 
 TEST(AtomicFile, RenameIntoPlaceMovesFile) {
-  TempDir d;
-  core::writeFileAtomically(d.path / "a.tmp", "payload");
-  core::writeFileAtomically(d.path / "a", "old");
-  core::renameIntoPlace(d.path / "a.tmp", d.path / "a");
-  EXPECT_EQ(slurp(d.path / "a"), "payload");
-  EXPECT_FALSE(fs::exists(d.path / "a.tmp"));
+  const lamina::test::TempDir d;
+  core::writeFileAtomically(d.path() / "a.tmp", "payload");
+  core::writeFileAtomically(d.path() / "a", "old");
+  core::renameIntoPlace(d.path() / "a.tmp", d.path() / "a");
+  EXPECT_EQ(lamina::test::readFile(d.path() / "a"), "payload");
+  EXPECT_FALSE(fs::exists(d.path() / "a.tmp"));
 }
 
 // flock locks belong to open file descriptions: a second descriptor cannot
 // take the lock while the FileLock lives, and can once it is gone.
 TEST(FileLock, ExcludesOtherLockersUntilReleased) {
-  TempDir d;
-  const fs::path lib = d.path / "library.toml";
+  const lamina::test::TempDir d;
+  const fs::path lib = d.path() / "library.toml";
   auto tryLock = [&] {
     const int fd = ::open((lib.string() + ".lock").c_str(), O_RDWR);
     EXPECT_GE(fd, 0);

@@ -36,9 +36,10 @@ void expectRoundTrip(double x) {
 } // namespace
 
 TEST(FormatExact, SpecialValuesRoundTrip) {
-  for (double x : {0.0, -0.0, 1.0, -1.0, 0.1, 1.0 / 3.0, 1e308, -1e308, DBL_MAX, DBL_MIN,
-                   std::numeric_limits<double>::denorm_min(), 4.9406564584124654e-324,
-                   2.2250738585072009e-308, 1e16, 1e17, 123456789012345678.0, 150e9, 2.0 / 3.0 * 1e-300})
+  for (double x :
+       {0.0, -0.0, 1.0, -1.0, 0.1, 1.0 / 3.0, 1e308, -1e308, DBL_MAX, DBL_MIN,
+        std::numeric_limits<double>::denorm_min(), 4.9406564584124654e-324, 2.2250738585072009e-308,
+        1e16, 1e17, 123456789012345678.0, 150e9, 2.0 / 3.0 * 1e-300})
     expectRoundTrip(x);
   EXPECT_EQ(core::formatExact(2.0), "2.0"); // integral values keep a '.', so TOML sees a float
   EXPECT_EQ(core::formatExact(0.1), "0.10000000000000001");

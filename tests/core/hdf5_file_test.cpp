@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "core/hdf5_file.hpp"
+#include "test_util.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,28 +15,11 @@
 namespace core = lamina::core;
 namespace fs = std::filesystem;
 
-namespace {
-
-struct TempDir {
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "lamina-h5-XXXXXX").string();
-    EXPECT_NE(::mkdtemp(t.data()), nullptr);
-    path = t;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  fs::path path;
-};
-
-} // namespace
-
 TEST(Hdf5File, DatasetsAndAttributesRoundTripExactly) {
-  TempDir d;
-  const fs::path p = d.path / "fields.h5";
-  const std::vector<double> values{1.0 / 3.0, -0.0, 1e308, std::numeric_limits<double>::denorm_min(),
-                                   std::nan(""), 150e9};
+  const lamina::test::TempDir d;
+  const fs::path p = d.path() / "fields.h5";
+  const std::vector<double> values{
+      1.0 / 3.0, -0.0, 1e308, std::numeric_limits<double>::denorm_min(), std::nan(""), 150e9};
   const std::vector<std::int32_t> phases{0, 1, -7, 2147483647, -2147483647 - 1, 3, 4, 5};
   {
     core::H5File f(p, core::H5File::Mode::Create);
@@ -83,8 +67,8 @@ TEST(Hdf5File, DatasetsAndAttributesRoundTripExactly) {
 }
 
 TEST(Hdf5File, RewritingADatasetReplacesIt) {
-  TempDir d;
-  const fs::path p = d.path / "x.h5";
+  const lamina::test::TempDir d;
+  const fs::path p = d.path() / "x.h5";
   core::H5File f(p, core::H5File::Mode::Create);
   const std::vector<double> a{1, 2, 3}, b{4, 5};
   f.writeDoubles("/v", a.data(), {3});
@@ -94,13 +78,13 @@ TEST(Hdf5File, RewritingADatasetReplacesIt) {
 }
 
 TEST(Hdf5File, FailuresNameFileAndObject) {
-  TempDir d;
-  const fs::path p = d.path / "x.h5";
+  const lamina::test::TempDir d;
+  const fs::path p = d.path() / "x.h5";
   try {
-    core::H5File f(d.path / "missing.h5", core::H5File::Mode::ReadOnly);
+    core::H5File f(d.path() / "missing.h5", core::H5File::Mode::ReadOnly);
     FAIL() << "no error";
   } catch (const lamina::Error& e) {
-    EXPECT_EQ(e.context().file, (d.path / "missing.h5").string());
+    EXPECT_EQ(e.context().file, (d.path() / "missing.h5").string());
   }
   core::H5File f(p, core::H5File::Mode::Create);
   std::vector<std::uint64_t> dims;

@@ -23,14 +23,14 @@ lamina::Error errorOf(const std::function<void()>& f) {
 }
 
 const char* kCase = "title = \"x\"\n"    // 1
-                    "[solver]\n"          // 2
-                    "tolerance = 1e-8\n"  // 3
-                    "tolerence = 1e-6\n"  // 4: the typo
-                    "[[loads]]\n"         // 5
-                    "kind = \"point\"\n"  // 6
-                    "[[loads]]\n"         // 7
-                    "kind = \"drag\"\n"   // 8
-                    "magnitde = 3.0\n";   // 9: another typo
+                    "[solver]\n"         // 2
+                    "tolerance = 1e-8\n" // 3
+                    "tolerence = 1e-6\n" // 4: the typo
+                    "[[loads]]\n"        // 5
+                    "kind = \"point\"\n" // 6
+                    "[[loads]]\n"        // 7
+                    "kind = \"drag\"\n"  // 8
+                    "magnitde = 3.0\n";  // 9: another typo
 
 } // namespace
 
@@ -75,7 +75,8 @@ TEST(TomlErrors, UnreadTableIsUnknown) {
 }
 
 TEST(TomlErrors, WrongTypeNamesKeyLineAndBothTypes) {
-  const toml::table doc = core::parseTomlString("[solver]\nsteps = 2.5\nname = 3\nok = \"yes\"\n", "x.toml");
+  const toml::table doc =
+      core::parseTomlString("[solver]\nsteps = 2.5\nname = 3\nok = \"yes\"\n", "x.toml");
   const core::TableReader solver = core::TableReader(doc, "x.toml").table("solver");
   lamina::Error e = errorOf([&] { solver.getInt("steps"); });
   EXPECT_EQ(e.context().key, "solver.steps");
@@ -120,7 +121,8 @@ TEST(TomlErrors, SyntaxErrorNamesFileAndLine) {
   EXPECT_GE(e.context().line, 3);
   EXPECT_LE(e.context().line, 4);
   EXPECT_EQ(std::string(e.what()).rfind("broken.toml:", 0), 0u) << e.what();
-  const lamina::Error dup = errorOf([] { core::parseTomlString("a = 1\nb = 2\na = 3\n", "dup.toml"); });
+  const lamina::Error dup =
+      errorOf([] { core::parseTomlString("a = 1\nb = 2\na = 3\n", "dup.toml"); });
   EXPECT_EQ(dup.context().line, 3);
 }
 

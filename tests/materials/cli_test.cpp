@@ -24,15 +24,7 @@ namespace {
 constexpr double GPa = 1e9;
 
 mat::Matrix6 table1() {
-  mat::Matrix6 c = mat::Matrix6::Zero();
-  c(0, 0) = c(1, 1) = c(2, 2) = 150 * GPa;
-  c(0, 1) = c(1, 0) = 40 * GPa;
-  c(0, 2) = c(2, 0) = 10 * GPa;
-  c(1, 2) = c(2, 1) = 80 * GPa;
-  c(3, 3) = 80 * GPa;
-  c(4, 4) = 20 * GPa;
-  c(5, 5) = 30 * GPa;
-  return c;
+  return lamina::test::membranePaperTable1();
 }
 
 mat::Matrix6 jsonMatrix(const nlohmann::json& j) {
@@ -111,7 +103,8 @@ TEST_F(MaterialsProgram, AddConstantsRoundTripsInDocumentedOrder) {
   for (double v : c.upperTriangle())
     text += (text.empty() ? "" : ",") + lamina::core::formatExact(v);
   const double rho = 1234.5678901234567;
-  const auto r = run("add rnd --constants " + text + " --density " + lamina::core::formatExact(rho));
+  const auto r =
+      run("add rnd --constants " + text + " --density " + lamina::core::formatExact(rho));
   ASSERT_EQ(r.status, 0) << r.err;
   const nlohmann::json j = showJson("rnd");
   const mat::Matrix6 back = jsonMatrix(j.at("C"));
@@ -163,14 +156,15 @@ TEST_F(MaterialsProgram, LayupZeroNinetyEqualsHandAverage) {
 // xz = 30, #21 D2323 = yz = 20 GPa.
 TEST_F(MaterialsProgram, AbaqusAndCalculixCardsFollowManualOrder) {
   ASSERT_EQ(run("add t1 --from-catalog table1-anisotropic").status, 0);
-  for (const auto& [format, keyword] : {std::pair<std::string, std::string>{"abaqus", "*ELASTIC, TYPE=ANISOTROPIC"},
-                                        {"calculix", "*ELASTIC, TYPE=ANISO"}}) {
+  for (const auto& [format, keyword] :
+       {std::pair<std::string, std::string>{"abaqus", "*ELASTIC, TYPE=ANISOTROPIC"},
+        {"calculix", "*ELASTIC, TYPE=ANISO"}}) {
     const auto r = run("export t1 --format " + format);
     ASSERT_EQ(r.status, 0) << r.err;
     const std::vector<double> v = cardNumbers(r.out, keyword);
     ASSERT_EQ(v.size(), 21u) << r.out;
     const double expected[21] = {150, 40, 150, 10, 80, 150, 0, 0, 0, 80, 0,
-                                 0,   0,  0,   30, 0,  0,  0, 0, 0, 20};
+                                 0,   0,  0,   30, 0,  0,   0, 0, 0, 20};
     for (int k = 0; k < 21; ++k)
       EXPECT_EQ(v[static_cast<std::size_t>(k)], expected[k] * GPa) << format << " value #" << k + 1;
     const std::vector<double> rho = cardNumbers(r.out, "*DENSITY");
@@ -294,8 +288,8 @@ TEST(ConcurrentWriters, TwoMaterialsCommandsBothLand) {
       "2.8e11,1.2e11,1.2e11,0,0,0,2.8e11,1.2e11,0,0,0,2.8e11,0,0,0,8e10,0,0,8e10,0,8e10";
   auto loop = [&](const std::string& prefix) {
     return "( for i in $(seq 1 20); do '" + prog + "' --library '" + path.string() + "' add " +
-           prefix + "$i --constants " + iso + " --density 7850 2>/dev/null || echo FAIL" +
-           prefix + "$i; done )";
+           prefix + "$i --constants " + iso + " --density 7850 2>/dev/null || echo FAIL" + prefix +
+           "$i; done )";
   };
   const std::string cmd = loop("p") + " > '" + (dir / "p.out").string() + "' & " + loop("q") +
                           " > '" + (dir / "q.out").string() + "' & wait";

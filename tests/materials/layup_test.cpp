@@ -71,7 +71,8 @@ TEST_F(LayupTest, ZeroNinetyOfTable1EqualsHandAverageExactly) {
 // The same stack with decimal thicknesses (1 mm each): two equal plies weigh
 // h_k / h = 1/2 exactly whatever h_k is, so the average is still exact.
 TEST_F(LayupTest, ZeroNinetyWithDecimalThicknessIsExactToo) {
-  const mat::Material a = layup({{"table1-anisotropic", 0, 1e-3}, {"table1-anisotropic", 90, 1e-3}});
+  const mat::Material a =
+      layup({{"table1-anisotropic", 0, 1e-3}, {"table1-anisotropic", 90, 1e-3}});
   const mat::Material b = layup({{"table1-anisotropic", 0, kH}, {"table1-anisotropic", 90, kH}});
   EXPECT_EQ(a.C.matrix(), b.C.matrix());
   EXPECT_EQ(*a.thickness, 2e-3);
@@ -106,8 +107,8 @@ TEST_F(LayupTest, UnequalThicknessesWeightByThickness) {
 // invariant under every rotation about z (rounding of 45-degree rotations:
 // 1e-13 relative), while the single ply is not.
 TEST_F(LayupTest, QuasiIsotropicStackIsInPlaneIsotropic) {
-  const mat::Material m = layup(
-      {{"aramid", 0, kH}, {"aramid", 45, kH}, {"aramid", 90, kH}, {"aramid", -45, kH}});
+  const mat::Material m =
+      layup({{"aramid", 0, kH}, {"aramid", 45, kH}, {"aramid", 90, kH}, {"aramid", -45, kH}});
   for (double deg : {10.0, 22.5, 30.0, 61.0, 117.0})
     EXPECT_LE(relDiff(m.C.rotatedAboutZ(deg * kPi / 180).matrix(), m.C.matrix()), 1e-13) << deg;
   EXPECT_GT(relDiff(mats_.at("aramid").C.rotatedAboutZ(30 * kPi / 180).matrix(),

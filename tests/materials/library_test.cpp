@@ -14,6 +14,7 @@
 #include <functional>
 
 namespace mat = lamina::materials;
+using lamina::test::errorOf;
 using lamina::test::readFile;
 using lamina::test::TempDir;
 using lamina::test::writeFile;
@@ -40,15 +41,6 @@ mat::Material randomMaterial(std::mt19937_64& rng, const std::string& name) {
   m.density = rho(rng) / 3.0; // a non-terminating decimal
   m.kind = "homogenized";
   return m;
-}
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const lamina::Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 bool hasTempLeftovers(const std::filesystem::path& dir) {

@@ -12,6 +12,7 @@
 #include <functional>
 
 namespace mat = lamina::materials;
+using lamina::test::errorOf;
 using lamina::test::readFile;
 using lamina::test::runMaterials;
 using lamina::test::TempDir;
@@ -19,31 +20,22 @@ using lamina::test::writeFile;
 
 namespace {
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const lamina::Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // A valid library text with one isotropic entry; entry line numbers below
 // refer to this layout.
-const std::string kHeader = "[lamina]\n"                           // 1
+const std::string kHeader = "[lamina]\n"                              // 1
                             "format = \"lamina-materials-library\"\n" // 2
-                            "version = 1\n";                        // 3
-const std::string kEntry = "[materials.steel]\n"                    // 4
-                           "kind = \"catalog\"\n"                   // 5
-                           "density = 7850.0\n"                     // 6
-                           "C = [\n"                                // 7
+                            "version = 1\n";                          // 3
+const std::string kEntry = "[materials.steel]\n"                      // 4
+                           "kind = \"catalog\"\n"                     // 5
+                           "density = 7850.0\n"                       // 6
+                           "C = [\n"                                  // 7
                            "  [2.8e11, 1.2e11, 1.2e11, 0.0, 0.0, 0.0],\n"
                            "  [1.2e11, 2.8e11, 1.2e11, 0.0, 0.0, 0.0],\n"
                            "  [1.2e11, 1.2e11, 2.8e11, 0.0, 0.0, 0.0],\n"
                            "  [0.0, 0.0, 0.0, 8e10, 0.0, 0.0],\n"
                            "  [0.0, 0.0, 0.0, 0.0, 8e10, 0.0],\n"
                            "  [0.0, 0.0, 0.0, 0.0, 0.0, 8e10],\n"
-                           "]\n";                                   // 14
+                           "]\n"; // 14
 
 class LibraryFile : public ::testing::Test {
 protected:
@@ -123,7 +115,8 @@ TEST_F(LibraryFile, BadDensityNamesTheDensityKey) {
 TEST_F(LibraryFile, BadThicknessNamesTheKey) {
   std::string text = kHeader + kEntry + "thickness = -1e-3\n"; // line 15
   std::string msg = load(text);
-  EXPECT_NE(msg.find(path_.string() + ":15: 'materials.steel.thickness'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find(path_.string() + ":15: 'materials.steel.thickness'"), std::string::npos)
+      << msg;
   text = kHeader + kEntry + "plies = [{ material = \"a\", angle_deg = 0.0, thickness = 0.0 }]\n";
   msg = load(text);
   EXPECT_NE(msg.find("'materials.steel.plies[0].thickness'"), std::string::npos) << msg;
@@ -165,7 +158,8 @@ protected:
 };
 
 // The 21 constants of a valid isotropic tensor (upper triangle row by row).
-const std::string kIso = "2.8e11,1.2e11,1.2e11,0,0,0,2.8e11,1.2e11,0,0,0,2.8e11,0,0,0,8e10,0,0,8e10,0,8e10";
+const std::string kIso =
+    "2.8e11,1.2e11,1.2e11,0,0,0,2.8e11,1.2e11,0,0,0,2.8e11,0,0,0,8e10,0,0,8e10,0,8e10";
 
 } // namespace
 
@@ -181,7 +175,8 @@ TEST_F(ProgramErrors, UnknownNameIsNamedWithTheEntries) {
 TEST_F(ProgramErrors, WrongNumberOfConstants) {
   expectFailure("add x --constants 1,2,3 --density 1000", {"21", "got 3"});
   expectFailure("add x --constants " + kIso + ",1 --density 1000", {"21"});
-  expectFailure("add x --constants " + kIso.substr(0, kIso.rfind(',')) + " --density 1000", {"21", "20"});
+  expectFailure("add x --constants " + kIso.substr(0, kIso.rfind(',')) + " --density 1000",
+                {"21", "20"});
   expectFailure("add x --constants 2.8e11,abc" + kIso.substr(kIso.find(',', 7)) + " --density 1000",
                 {"abc"});
 }
@@ -209,7 +204,9 @@ TEST_F(ProgramErrors, BadPlies) {
   expectFailure("layup s --ply t1", {"MATERIAL:ANGLE_DEG:THICKNESS_M"});
 }
 
-TEST_F(ProgramErrors, UnknownExportFormat) { expectFailure("export t1 --format nastran", {"nastran"}); }
+TEST_F(ProgramErrors, UnknownExportFormat) {
+  expectFailure("export t1 --format nastran", {"nastran"});
+}
 
 TEST_F(ProgramErrors, MissingSubcommandIsAUsageError) {
   const auto r = run("");

@@ -14,6 +14,7 @@
 #include <cmath>
 
 namespace mat = lamina::materials;
+using lamina::test::errorOf;
 using lamina::test::randomRotation;
 using lamina::test::randomSpd;
 using lamina::test::relDiff;
@@ -23,35 +24,13 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double GPa = 1e9;
 
-// Table 1 of the membrane paper (lamina order: c44 = xy, c55 = yz, c66 = xz).
 mat::Matrix6 table1() {
-  mat::Matrix6 c = mat::Matrix6::Zero();
-  c(0, 0) = 150 * GPa;
-  c(0, 1) = c(1, 0) = 40 * GPa;
-  c(0, 2) = c(2, 0) = 10 * GPa;
-  c(1, 1) = 150 * GPa;
-  c(1, 2) = c(2, 1) = 80 * GPa;
-  c(2, 2) = 150 * GPa;
-  c(3, 3) = 80 * GPa;
-  c(4, 4) = 20 * GPa;
-  c(5, 5) = 30 * GPa;
-  return c;
+  return lamina::test::membranePaperTable1();
 }
 
 const mat::Catalog& catalog() {
   static const mat::Catalog cat(lamina::test::catalogPath());
   return cat;
-}
-
-// The message of the lamina::Error thrown by @p f ("" if none is thrown).
-template <typename F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const lamina::Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 // Rotates the fourth-order tensor by definition,
@@ -100,7 +79,8 @@ TEST(Stiffness, IsotropicMatchesMembranePaperEq16) {
         0, 0, 0, f * (1 - 2 * nu) / 2, 0, 0,    //
         0, 0, 0, 0, f * (1 - 2 * nu) / 2, 0,    //
         0, 0, 0, 0, 0, f * (1 - 2 * nu) / 2;
-    EXPECT_LE(relDiff(mat::Stiffness::isotropic(E, nu).matrix(), d), 2e-15) << "E " << E << " nu " << nu;
+    EXPECT_LE(relDiff(mat::Stiffness::isotropic(E, nu).matrix(), d), 2e-15)
+        << "E " << E << " nu " << nu;
   }
 }
 
@@ -148,8 +128,8 @@ TEST(Stiffness, EngineeringConstantsOfTable1) {
   // E1 = 1 / S11 with S11 = (c22 c33 - c23^2) / det of the 3x3 normal block
   // (Cramer's rule, by hand).
   const double c11 = 150, c12 = 40, c13 = 10, c22 = 150, c23 = 80, c33 = 150;
-  const double det = c11 * (c22 * c33 - c23 * c23) - c12 * (c12 * c33 - c23 * c13) +
-                     c13 * (c12 * c23 - c22 * c13);
+  const double det =
+      c11 * (c22 * c33 - c23 * c23) - c12 * (c12 * c33 - c23 * c13) + c13 * (c12 * c23 - c22 * c13);
   const double E1 = det / (c22 * c33 - c23 * c23) * GPa;
   EXPECT_NEAR(e.E1, E1, 1e-14 * E1);
 }
@@ -266,7 +246,8 @@ TEST(Validate, RejectsNaNNamingTheMaterial) {
 // ------------------------------------------------------------------ symmetry
 
 TEST(Symmetry, ClassifiesIsotropic) {
-  EXPECT_EQ(mat::classify(mat::Stiffness::isotropic(210e9, 0.3)).cls, mat::SymmetryClass::Isotropic);
+  EXPECT_EQ(mat::classify(mat::Stiffness::isotropic(210e9, 0.3)).cls,
+            mat::SymmetryClass::Isotropic);
 }
 
 // Cubic: C11 = C22 = C33, C12 = C13 = C23, C44 = C55 = C66 with C44 !=

@@ -4,6 +4,7 @@
 /// random SPD stiffnesses and rotations, relative differences, and running the
 /// `materials` program as a child process.
 
+#include "../core/test_util.hpp"
 #include "materials/stiffness.hpp"
 
 #include <gtest/gtest.h>
@@ -18,43 +19,21 @@
 
 namespace lamina::test {
 
-/// A fresh directory under the system temporary directory, removed with its
-/// content when the object dies.
-class TempDir {
-public:
-  TempDir() {
-    std::string tmpl = (std::filesystem::temp_directory_path() / "lamina-test-XXXXXX").string();
-    if (!::mkdtemp(tmpl.data()))
-      throw std::runtime_error("mkdtemp failed");
-    path_ = tmpl;
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  /// @return the directory
-  const std::filesystem::path& path() const { return path_; }
-  /// @return the path of @p name inside the directory
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-
-private:
-  std::filesystem::path path_;
-};
-
-/// @return the whole content of @p path ("" if it does not exist)
-inline std::string readFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-/// Writes @p text to @p path (plain write: test set-up only).
-inline void writeFile(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  out << text;
+/// Table 1 of the membrane paper, typed in from the paper (GPa -> Pa, lamina
+/// order: c44 = xy, c55 = yz, c66 = xz, zeros elsewhere).
+inline materials::Matrix6 membranePaperTable1() {
+  const double GPa = 1e9;
+  materials::Matrix6 c = materials::Matrix6::Zero();
+  c(0, 0) = 150 * GPa;
+  c(0, 1) = c(1, 0) = 40 * GPa;
+  c(0, 2) = c(2, 0) = 10 * GPa;
+  c(1, 1) = 150 * GPa;
+  c(1, 2) = c(2, 1) = 80 * GPa;
+  c(2, 2) = 150 * GPa;
+  c(3, 3) = 80 * GPa;
+  c(4, 4) = 20 * GPa;
+  c(5, 5) = 30 * GPa;
+  return c;
 }
 
 /// A random symmetric positive definite 6x6 matrix with no zero pattern
@@ -87,16 +66,20 @@ inline double relDiff(const materials::Matrix6& a, const materials::Matrix6& b) 
 
 /// Result of running a program.
 struct RunResult {
-  int status = -1;  ///< exit code (-1 if it did not exit normally)
-  std::string out;  ///< its standard output
-  std::string err;  ///< its standard error
+  int status = -1; ///< exit code (-1 if it did not exit normally)
+  std::string out; ///< its standard output
+  std::string err; ///< its standard error
 };
 
 /// Path of the `materials` program of this build.
-inline std::string materialsProgram() { return std::string(LAMINA_BINARY_DIR) + "/bin/materials"; }
+inline std::string materialsProgram() {
+  return std::string(LAMINA_BINARY_DIR) + "/bin/materials";
+}
 
 /// Path of the source tree's catalog.
-inline std::string catalogPath() { return std::string(LAMINA_SOURCE_DIR) + "/materials/catalog.toml"; }
+inline std::string catalogPath() {
+  return std::string(LAMINA_SOURCE_DIR) + "/materials/catalog.toml";
+}
 
 /// Runs `materials --library LIB --catalog CATALOG ARGS` through the shell,
 /// capturing stdout and stderr in files of @p dir. Arguments must not need

@@ -1,0 +1,67 @@
+#pragma once
+/// @file test_util.hpp
+/// @brief Helpers shared by the core and materials test suites: a temporary
+/// directory, whole-file reads and writes, and the message of a lamina::Error.
+
+#include "core/error.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace lamina::test {
+
+/// A fresh directory under the system temporary directory, removed with its
+/// content when the object dies.
+class TempDir {
+public:
+  TempDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "lamina-test-XXXXXX").string();
+    if (!::mkdtemp(tmpl.data()))
+      throw std::runtime_error("mkdtemp failed");
+    path_ = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  /// @return the directory
+  const std::filesystem::path& path() const { return path_; }
+  /// @return the path of @p name inside the directory
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+private:
+  std::filesystem::path path_;
+};
+
+/// @return the whole content of @p path ("" if it does not exist)
+inline std::string readFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// Writes @p text to @p path (plain write: test set-up only).
+inline void writeFile(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+/// @return what() of the lamina::Error thrown by @p f, "" if none is thrown
+inline std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const lamina::Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+} // namespace lamina::test
