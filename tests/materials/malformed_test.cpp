@@ -4,6 +4,7 @@
 // byte-identical afterwards.
 
 #include "core/error.hpp"
+#include "materials/catalog.hpp"
 #include "materials/library.hpp"
 #include "test_support.hpp"
 
@@ -127,6 +128,33 @@ TEST_F(LibraryFile, UnknownKindNamesTheKey) {
   text.replace(text.find("\"catalog\""), 9, "\"magic\"");
   const std::string msg = load(text);
   EXPECT_NE(msg.find("materials.steel.kind"), std::string::npos) << msg;
+}
+
+// A catalog is validated as strictly as the library: an unknown key, an
+// unknown law, a missing density or an indefinite C names file, line, entry.
+TEST_F(LibraryFile, BadCatalogNamesFileLineAndEntry) {
+  const std::string good = "[glass]\ndescription = \"d\"\nsource = \"s\"\ndensity = 2540.0\n"
+                           "law = \"isotropic\"\nE = 72.4e9\nnu = 0.22\n";
+  auto catalogError = [&](const std::string& text) {
+    writeFile(path_, text);
+    return errorOf([&] { mat::Catalog cat(path_); });
+  };
+  EXPECT_EQ(catalogError(good), "");
+  std::string msg = catalogError(good + "colour = \"green\"\n"); // line 8
+  EXPECT_NE(msg.find(path_.string() + ":8: 'glass.colour'"), std::string::npos) << msg;
+  std::string text = good;
+  text.replace(text.find("\"isotropic\""), 11, "\"plastic\"");
+  msg = catalogError(text);
+  EXPECT_NE(msg.find("'glass.law'"), std::string::npos) << msg;
+  text = good;
+  text.erase(text.find("density = 2540.0\n"), 17);
+  msg = catalogError(text);
+  EXPECT_NE(msg.find("'glass.density'"), std::string::npos) << msg;
+  text = good;
+  text.replace(text.find("nu = 0.22"), 9, "nu = 0.6");
+  msg = catalogError(text);
+  EXPECT_NE(msg.find(path_.string()), std::string::npos) << msg;
+  EXPECT_NE(msg.find("glass"), std::string::npos) << msg;
 }
 
 // ------------------------------------------------------- the program
