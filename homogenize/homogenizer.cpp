@@ -144,8 +144,17 @@ Homogenizer::Homogenizer(const Grid& grid, std::vector<std::int32_t> phase,
 
 Result Homogenizer::run() {
   const auto t0 = std::chrono::steady_clock::now();
-  if (opt_.threads > 0)
-    omp_set_num_threads(opt_.threads);
+  // Threads: as asked, or (auto) all for grids worth it. Below ~64k voxels a
+  // CG iteration is too short to amortise the fork/join of its parallel
+  // loops, and on shared cores a team can wait a scheduler slice per barrier.
+  const int threads = opt_.threads > 0 ? opt_.threads
+                      : grid_.size() < 65536 ? 1
+                                             : omp_get_max_threads();
+  struct ThreadsGuard {
+    int saved = omp_get_max_threads();
+    ~ThreadsGuard() { omp_set_num_threads(saved); }
+  } guard;
+  omp_set_num_threads(threads);
   Result res;
   res.voxels = grid_.size();
 
@@ -166,7 +175,7 @@ Result Homogenizer::run() {
   }
   referenceMedium(present, res.lambda0, res.mu0);
   const materials::Stiffness C0 = materials::Stiffness::fromLame(res.lambda0, res.mu0);
-  const VectorFft fft(grid_, opt_.threads > 0 ? opt_.threads : omp_get_max_threads(), opt_.measure);
+  const VectorFft fft(grid_, threads, opt_.measure);
   const CellOperator A(grid_, phase_, C_);
   const GreenOperator M(grid_, res.lambda0, res.mu0, fft);
   CgSolver cg(grid_, A, M, static_cast<double>(res.voxels));

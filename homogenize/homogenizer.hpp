@@ -31,7 +31,7 @@ namespace lamina::homogenize {
 struct Options {
   double tol = 1e-6;          ///< relative residual of each load case
   int max_iterations = 10000; ///< per load case; exceeding it is an error
-  int threads = 0;            ///< OpenMP and FFTW threads (0: OpenMP default)
+  int threads = 0;            ///< OpenMP and FFTW threads (0: auto, 1 below 64k voxels)
   bool measure = false;       ///< FFTW_MEASURE planning (pays off from ~64^3)
   bool quiet = true;          ///< no progress line
 };
