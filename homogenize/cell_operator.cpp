@@ -31,7 +31,7 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
 // we form X = Dx Ay u, Y = Ax Dy u, Z = Ax Ay u from the four node rows and
 // finish along z per voxel (k, k+1): 10 additions per component instead of 21.
 void CellOperator::stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S,
-                               double* acc, double* scratch) const {
+                               double* acc, double* energy, double* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t N = grid_.size(), P = static_cast<std::size_t>(n1) * n2;
   const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
@@ -81,14 +81,18 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
         e[5] += g[0][2] + g[2][0];
       }
       const double* Cp = &C_[36 * static_cast<std::size_t>(phase_[r00 + k])];
+      double w = 0;
       for (int a = 0; a < 6; ++a) {
         const double* rowC = Cp + 6 * a;
         const double sa = rowC[0] * e[0] + rowC[1] * e[1] + rowC[2] * e[2] + rowC[3] * e[3] +
                           rowC[4] * e[4] + rowC[5] * e[5];
         S[a * P + row + k] = sa;
+        w += sa * e[a];
         if (acc)
           acc[a] += sa;
       }
+      if (energy)
+        *energy += w;
     }
   }
 }
@@ -152,13 +156,14 @@ void CellOperator::divergencePlane(int i, const double* prev, const double* cur,
 }
 
 void CellOperator::apply(const double* u, const std::array<double, 6>& E, double* f,
-                         std::array<double, 6>* average) const {
+                         std::array<double, 6>* average, double* energy) const {
   const int n0 = grid_.n[0];
   const std::size_t P = 6 * static_cast<std::size_t>(grid_.n[1]) * static_cast<std::size_t>(grid_.n[2]);
   const int nt = std::max(1, std::min(omp_get_max_threads(), n0));
   if (planes_.size() < 2 * P * static_cast<std::size_t>(nt))
     planes_.assign(2 * P * static_cast<std::size_t>(nt), 0.0);
   double total[6] = {0, 0, 0, 0, 0, 0};
+  double total_energy = 0;
   // Each thread owns a slab of x-planes and rolls two voxel planes of stress
   // through it (recomputing the one plane below its slab): no barrier inside,
   // which matters when the cores are shared, and 2 planes of memory per thread.
@@ -168,23 +173,28 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
     const int begin = static_cast<int>(static_cast<long>(n0) * t / T);
     const int end = static_cast<int>(static_cast<long>(n0) * (t + 1) / T);
     double acc[6] = {0, 0, 0, 0, 0, 0};
+    double my_energy = 0;
+    double* en = energy ? &my_energy : nullptr;
     std::vector<double> scratch(9 * (static_cast<std::size_t>(grid_.n[2]) + 1));
     double* prev = planes_.data() + 2 * P * static_cast<std::size_t>(t);
     double* cur = prev + P;
     if (f && begin < end)
-      stressPlane(begin == 0 ? n0 - 1 : begin - 1, u, E, prev, nullptr, scratch.data());
+      stressPlane(begin == 0 ? n0 - 1 : begin - 1, u, E, prev, nullptr, nullptr, scratch.data());
     for (int i = begin; i < end; ++i) {
-      stressPlane(i, u, E, cur, average ? acc : nullptr, scratch.data());
+      stressPlane(i, u, E, cur, average ? acc : nullptr, en, scratch.data());
       if (f)
         divergencePlane(i, prev, cur, f, scratch.data());
       std::swap(prev, cur);
     }
-    if (average) {
 #pragma omp critical(lamina_cell_operator_average)
+    {
       for (int a = 0; a < 6; ++a)
         total[a] += acc[a];
+      total_energy += my_energy;
     }
   }
+  if (energy)
+    *energy = total_energy;
   if (average)
     for (int a = 0; a < 6; ++a)
       (*average)[static_cast<std::size_t>(a)] = total[a] / static_cast<double>(grid_.size());

@@ -47,15 +47,18 @@ public:
   /// @param u nodal displacement (3 x N, component-major), or nullptr for u = 0
   /// @param E macroscopic strain (lamina order, engineering shear)
   /// @param f nodal forces (3 x N) on exit, or nullptr to skip the divergence
+  /// @param average if not null: <sigma> on exit
+  /// @param energy if not null: sum over voxels of eps : C : eps on exit,
+  ///   which for E = 0 is u^T A u (CG needs it, and it costs no extra pass)
   void apply(const double* u, const std::array<double, 6>& E, double* f,
-             std::array<double, 6>* average) const;
+             std::array<double, 6>* average, double* energy = nullptr) const;
 
   /// @return the grid
   const Grid& grid() const { return grid_; }
 
 private:
   void stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S, double* acc,
-                   double* scratch) const;
+                   double* energy, double* scratch) const;
   void divergencePlane(int i, const double* prev, const double* cur, double* f,
                        double* scratch) const;
 

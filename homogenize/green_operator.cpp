@@ -17,7 +17,7 @@ GreenOperator::GreenOperator(const Grid& grid, double lambda0, double mu0, const
   }
 }
 
-void GreenOperator::apply(const double* r, double* z) const {
+double GreenOperator::apply(const double* r, double* z) const {
   fftw_complex* w = fft_.work();
   fft_.forward(r, w);
   const int n0 = grid_.n[0], n1 = grid_.n[1], m2 = grid_.n[2] / 2 + 1;
@@ -28,7 +28,9 @@ void GreenOperator::apply(const double* r, double* z) const {
   // |q|^2 below this is a zero of q (cos(pi/2) is 6e-17, not 0)
   const double qmax2 = 4.0 * (1 / (h0 * h0) + 1 / (h1 * h1) + 1 / (h2 * h2));
   const double zero2 = 1e-20 * qmax2;
-#pragma omp parallel for schedule(static)
+  const int n2 = grid_.n[2];
+  double rz = 0;
+#pragma omp parallel for schedule(static) reduction(+ : rz)
   for (int i = 0; i < n0; ++i)
     for (int j = 0; j < n1; ++j) {
       const double s0 = sin_[0][static_cast<std::size_t>(i)], c0 = cos_[0][static_cast<std::size_t>(i)];
@@ -47,16 +49,23 @@ void GreenOperator::apply(const double* r, double* z) const {
           continue;
         }
         const double inv = norm / (mu0_ * qq), bq = beta / qq;
+        // Parseval over the half spectrum: the modes 0 < k < n2/2 stand for
+        // themselves and their conjugates
+        const double weight = (k == 0 || 2 * k == n2) ? 1.0 : 2.0;
+        double rz_here = 0;
         for (int part = 0; part < 2; ++part) {
           const double ra = (*a)[part], rb = (*b)[part], rc = (*c)[part];
           const double dot = bq * (q0 * ra + q1 * rb + q2 * rc);
           (*a)[part] = inv * (ra - dot * q0);
           (*b)[part] = inv * (rb - dot * q1);
           (*c)[part] = inv * (rc - dot * q2);
+          rz_here += ra * (*a)[part] + rb * (*b)[part] + rc * (*c)[part];
         }
+        rz += weight * rz_here;
       }
     }
   fft_.backward(w, z);
+  return rz;
 }
 
 } // namespace lamina::homogenize

@@ -25,8 +25,9 @@ public:
   /// @param grid the grid; @param lambda0, mu0 reference Lame constants (Pa);
   /// @param fft plans for @p grid (must outlive this object)
   GreenOperator(const Grid& grid, double lambda0, double mu0, const VectorFft& fft);
-  /// z = K0^+ r (3 x N each; r is kept, z may not alias r)
-  void apply(const double* r, double* z) const;
+  /// z = K0^+ r (3 x N each; r is kept, z may not alias r).
+  /// @return r^T z, summed in Fourier space (Parseval) during the solve
+  double apply(const double* r, double* z) const;
 
 private:
   Grid grid_;

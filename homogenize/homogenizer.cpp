@@ -48,14 +48,6 @@ void referenceMedium(const std::vector<materials::Stiffness>& C, double& lambda0
 
 namespace {
 
-double dot(const double* a, const double* b, std::size_t n) {
-  double s = 0;
-#pragma omp parallel for reduction(+ : s) schedule(static)
-  for (std::size_t i = 0; i < n; ++i)
-    s += a[i] * b[i];
-  return s;
-}
-
 /// The pieces of one solve, set up once and reused by the six load cases.
 class CgSolver {
 public:
@@ -78,8 +70,7 @@ public:
       r[i] = -r[i];
       x[i] = 0;
     }
-    M_.apply(r, p); // z0 = p0
-    double rz = dot(r, p, n);
+    double rz = M_.apply(r, p); // p0 = z0 = M r0, rz = r0^T z0
     const double scale = ref_ * energy_E;
     LoadCaseResult res;
     res.residual = std::sqrt(std::max(rz, 0.0) / scale);
@@ -91,8 +82,8 @@ public:
            << " iterations (residual " << res.residual << ")";
         throw Error(os.str());
       }
-      A_.apply(p, zero, w, nullptr); // w = A p
-      const double pw = dot(p, w, n);
+      double pw = 0;
+      A_.apply(p, zero, w, nullptr, &pw); // w = A p; pw = p^T A p from the stress pass
       const double alpha = rz / pw;
       if (!std::isfinite(alpha) || !(pw > 0))
         throw DivergenceError("conjugate gradients broke down (p^T A p = " + std::to_string(pw) +
@@ -102,8 +93,7 @@ public:
         x[i] += alpha * p[i];
         r[i] -= alpha * w[i];
       }
-      M_.apply(r, w); // w now holds z = M r
-      const double rz_new = dot(r, w, n);
+      const double rz_new = M_.apply(r, w); // w now holds z = M r
       if (!std::isfinite(rz_new))
         throw DivergenceError("residual is NaN/Inf in conjugate gradients");
       const double beta = rz_new / rz;

@@ -29,7 +29,7 @@ namespace lamina::homogenize {
 
 /// Solver settings.
 struct Options {
-  double tol = 1e-6;          ///< relative residual of each load case
+  double tol = 1e-5;          ///< relative residual of each load case (1e-5: C to ~5 digits)
   int max_iterations = 10000; ///< per load case; exceeding it is an error
   int threads = 0;            ///< OpenMP and FFTW threads (0: auto, 1 below 64k voxels)
   bool measure = false;       ///< FFTW_MEASURE planning (pays off from ~64^3)

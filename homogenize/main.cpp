@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
   std::string cell_path, name, library, catalog;
   bool json = false, overwrite = false, measure = false, quiet = false;
   int threads = 0, resolution = 0;
-  double tol = 1e-6;
+  double tol = 1e-5;
   app.add_option("cell", cell_path, "cell file (TOML)")->required();
   app.add_option("--name", name, "library entry name (with a J sweep: NAME-J<J>)")->required();
   app.add_option("--library", library, "library file (default: $LAMINA_LIBRARY, XDG data dir)");
