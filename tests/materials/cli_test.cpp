@@ -332,7 +332,14 @@ TEST(ConcurrentWriters, KilledWriterLeavesReadableLibrary) {
       }
       ::_exit(0);
     }
-    ::usleep(static_cast<useconds_t>(40000 + 25000 * round));
+    // Wait until the writer has landed at least one entry of this round
+    // (robust to a loaded machine), then kill it a little later, mid-work.
+    for (int wait = 0; wait < 2000; ++wait) {
+      if (std::filesystem::exists(path) && mat::Library(path).names().size() > previous)
+        break;
+      ::usleep(5000);
+    }
+    ::usleep(static_cast<useconds_t>(3000 + 7000 * round));
     ::kill(pid, SIGKILL);
     int status = 0;
     ASSERT_EQ(::waitpid(pid, &status, 0), pid);
