@@ -17,6 +17,15 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
         C_.push_back(c(i, j));
+  // isotropic phases take a 10-flop stress instead of the 36-flop 6x6 product
+  for (const auto& c : C) {
+    const double lambda = c(0, 1), mu = c(3, 3);
+    const materials::Matrix6 iso = materials::Stiffness::fromLame(lambda, mu).matrix();
+    const bool is_iso = (c.matrix() - iso).cwiseAbs().maxCoeff() <= 1e-14 * c.matrix().cwiseAbs().maxCoeff();
+    iso_.push_back(is_iso ? 1 : 0);
+    lame_.push_back(lambda);
+    lame_.push_back(mu);
+  }
   for (std::int32_t p : phase_)
     LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C.size(), "phase index ", p,
                  " has no stiffness");
@@ -80,16 +89,31 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
         e[4] += g[1][2] + g[2][1];
         e[5] += g[0][2] + g[2][0];
       }
-      const double* Cp = &C_[36 * static_cast<std::size_t>(phase_[r00 + k])];
+      const std::size_t ph = static_cast<std::size_t>(phase_[r00 + k]);
+      double sv[6];
+      if (iso_[ph]) {
+        const double lambda = lame_[2 * ph], mu = lame_[2 * ph + 1];
+        const double lt = lambda * (e[0] + e[1] + e[2]), m2 = 2 * mu;
+        sv[0] = lt + m2 * e[0];
+        sv[1] = lt + m2 * e[1];
+        sv[2] = lt + m2 * e[2];
+        sv[3] = mu * e[3]; // engineering shear strain
+        sv[4] = mu * e[4];
+        sv[5] = mu * e[5];
+      } else {
+        const double* Cp = &C_[36 * ph];
+        for (int a = 0; a < 6; ++a) {
+          const double* rowC = Cp + 6 * a;
+          sv[a] = rowC[0] * e[0] + rowC[1] * e[1] + rowC[2] * e[2] + rowC[3] * e[3] +
+                  rowC[4] * e[4] + rowC[5] * e[5];
+        }
+      }
       double w = 0;
       for (int a = 0; a < 6; ++a) {
-        const double* rowC = Cp + 6 * a;
-        const double sa = rowC[0] * e[0] + rowC[1] * e[1] + rowC[2] * e[2] + rowC[3] * e[3] +
-                          rowC[4] * e[4] + rowC[5] * e[5];
-        S[a * P + row + k] = sa;
-        w += sa * e[a];
+        S[a * P + row + k] = sv[a];
+        w += sv[a] * e[a];
         if (acc)
-          acc[a] += sa;
+          acc[a] += sv[a];
       }
       if (energy)
         *energy += w;
