@@ -41,25 +41,6 @@ Stiffness transverselyIsotropic(double E1, double E2, double G12, double nu12, d
   return Stiffness(s.inverse()).symmetrized();
 }
 
-GvboParameters readGvbo(const core::TableReader& g, double E0, double nu0) {
-  GvboParameters p;
-  p.E0 = E0;
-  p.nu0 = nu0;
-  p.Et = g.getDouble("Et");
-  p.p = g.getDouble("p");
-  p.a1 = g.getDouble("a1");
-  p.a2 = g.getDouble("a2");
-  p.a3 = g.getDouble("a3");
-  p.k1 = g.getDouble("k1");
-  p.k2 = g.getDouble("k2");
-  p.k3 = g.getDouble("k3");
-  p.k4 = g.getDouble("k4");
-  p.Em = g.getDouble("Em");
-  p.A0 = g.getDouble("A0");
-  p.Ac = g.getDouble("Ac");
-  p.Af = g.getDouble("Af");
-  return p;
-}
 } // namespace
 
 Material CatalogEntry::toMaterial() const {
@@ -100,7 +81,7 @@ Catalog::Catalog(const std::filesystem::path& path) : path_(path) {
         const double E = t.getDouble("E"), nu = t.getDouble("nu");
         e.C = Stiffness::isotropic(E, nu);
         if (e.law == "gvbo")
-          e.gvbo = readGvbo(t.table("gvbo"), E, nu);
+          e.gvbo = readGvboParameters(t.table("gvbo"), E, nu);
       } else if (e.law == "transversely-isotropic") {
         e.C = transverselyIsotropic(t.getDouble("E1"), t.getDouble("E2"), t.getDouble("G12"),
                                     t.getDouble("nu12"), t.getDouble("nu23"));

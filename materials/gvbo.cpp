@@ -7,6 +7,26 @@
 
 namespace lamina::materials {
 
+GvboParameters readGvboParameters(const core::TableReader& g, double E0, double nu0) {
+  GvboParameters p;
+  p.E0 = E0;
+  p.nu0 = nu0;
+  p.Et = g.getDouble("Et");
+  p.p = g.getDouble("p");
+  p.a1 = g.getDouble("a1");
+  p.a2 = g.getDouble("a2");
+  p.a3 = g.getDouble("a3");
+  p.k1 = g.getDouble("k1");
+  p.k2 = g.getDouble("k2");
+  p.k3 = g.getDouble("k3");
+  p.k4 = g.getDouble("k4");
+  p.Em = g.getDouble("Em");
+  p.A0 = g.getDouble("A0");
+  p.Ac = g.getDouble("Ac");
+  p.Af = g.getDouble("Af");
+  return p;
+}
+
 GvboModuli gvboModuli(const GvboParameters& g, double J) {
   LAMINA_CHECK(J > 0 && std::isfinite(J), "GVBO state J must be positive, got ", J);
   // eq. (15)

@@ -3,6 +3,8 @@
 /// @brief Parameters of the GVBO polymer law (polyurea chapter, Table 1) and
 /// its deformation-dependent elastic moduli (eqs. 13-16).
 
+#include "core/toml_reader.hpp"
+
 #include <string>
 
 namespace lamina::materials {
@@ -23,6 +25,10 @@ struct GvboParameters {
   double Ac = 0;         ///< isotropic stress rate constant (1/s)
   double Af = 0;         ///< final isotropic stress (Pa)
 };
+
+/// Reads the GVBO parameters other than E0, nu0 from table @p g (keys Et, p,
+/// a1, a2, a3, k1, k2, k3, k4, Em, A0, Ac, Af; SI units), all required.
+GvboParameters readGvboParameters(const core::TableReader& g, double E0, double nu0);
 
 /// Instantaneous isotropic moduli of a GVBO phase at volume ratio J.
 struct GvboModuli {
