@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Benchmark of the FFT homogenizer (not a test): wall time, iterations per
+# load case and peak memory for the sphere and polyurea cells at 64^3 and
+# 128^3 with 1 and 2 threads, a contrast sweep of the sphere to inclusion
+# E = 156 GPa, and the resolution study of the sphere cell (32^3 against the
+# Richardson extrapolation from 64^3, 128^3 and, with BENCH_256=1, 256^3).
+# Usage: bash bench/homogenize/run.sh [BUILD_DIR]      (make bench runs it)
+# Env: BENCH_TOL (default 1e-5: C to 5 significant digits), BENCH_256=1,
+#      BENCH_QUICK=1 (64^3 only), BENCH_OUT (default BUILD/bench-homogenize).
+set -euo pipefail
+BUILD="${1:-build}"
+cd "$(dirname "$0")/../.."
+BIN="$BUILD/bin/homogenize"
+[ -x "$BIN" ] || { echo "build $BIN first" >&2; exit 1; }
+OUT="${BENCH_OUT:-$BUILD/bench-homogenize}"
+mkdir -p "$OUT"
+TOL="${BENCH_TOL:-1e-5}"
+LIB="$OUT/library.toml"
+rm -f "$LIB" "$LIB.lock"
+RES="$OUT/results.jsonl"
+: > "$RES"
+SIZES="64 128"
+[ "${BENCH_QUICK:-0}" = 1 ] && SIZES="64"
+
+# run NAME CELL N THREADS [extra args]: one homogenization, one JSON line in $RES
+run() {
+  local name="$1" cell="$2" n="$3" threads="$4"
+  shift 4
+  local tfile="$OUT/time-$name-$n-$threads.txt"
+  /usr/bin/time -v "$BIN" "$cell" --name "$name-$n-t$threads" --library "$LIB" --overwrite \
+    --resolution "$n" --threads "$threads" --tol "$TOL" --json --quiet "$@" \
+    2>"$tfile" > "$OUT/last.json"
+  local rss
+  rss=$(awk -F: '/Maximum resident/ {gsub(/ /, "", $2); print $2}' "$tfile")
+  /usr/bin/python3 - "$OUT/last.json" "$name" "$n" "$threads" "$rss" >> "$RES" <<'PY'
+import json, sys
+j = json.loads(open(sys.argv[1]).read().splitlines()[-1])
+j.update(case=sys.argv[2], n=int(sys.argv[3]), threads=int(sys.argv[4]), rss_kb=int(sys.argv[5]))
+print(json.dumps(j))
+PY
+  tail -n 1 "$RES" | /usr/bin/python3 -c '
+import json, sys
+j = json.loads(sys.stdin.read())
+print("%-16s %4d^3 %d thr  wall %7.2f s  peak %7.0f MiB  iterations %s  C11 %.6g  C44 %.6g" % (
+    j["case"], j["n"], j["threads"], j["wall_s"], j["rss_kb"] / 1024, j["iterations"],
+    j["C"][0][0], j["C"][3][3]))'
+}
+
+echo "homogenize bench: tol $TOL, $(nproc) cores, $(date -u +%FT%TZ)"
+echo "--- sphere (19 %, E 156 MPa / 890 MPa) and polyurea cells, 1 and 2 threads"
+for n in $SIZES; do
+  for t in 1 2; do
+    run sphere cases/cells/sphere.toml "$n" "$t"
+    run polyurea cases/cells/polyurea.toml "$n" "$t"
+  done
+done
+
+echo "--- contrast sweep: sphere inclusion E (matrix 156 MPa), 2 threads"
+for E in 1.56e9 15.6e9 156e9; do
+  cell="$OUT/sphere-E$E.toml"
+  sed "s/^E = 890e6/E = $E/" cases/cells/sphere.toml > "$cell"
+  for n in $SIZES; do
+    run "sphere-E$E" "$cell" "$n" 2
+  done
+done
+
+echo "--- resolution study of the sphere cell, 2 threads, tol 1e-8"
+STUDY="32 64 128"
+[ "${BENCH_256:-0}" = 1 ] && STUDY="32 64 128 256"
+for n in $STUDY; do
+  TOL=1e-8 run study cases/cells/sphere.toml "$n" 2
+done
+/usr/bin/python3 - "$RES" <<'PY'
+import json, sys, math
+rows = [json.loads(l) for l in open(sys.argv[1]) if '"study"' in l]
+by = {r["n"]: r for r in rows}
+names = {"C11": (0, 0), "C12": (0, 1), "C44": (3, 3)}
+for key, (i, j) in names.items():
+    vals = {n: by[n]["C"][i][j] for n in by}
+    line = "  ".join("%d^3 %.6g" % (n, v) for n, v in sorted(vals.items()))
+    if all(n in vals for n in (64, 128, 256)):
+        a, b, c = vals[64], vals[128], vals[256]
+        p = math.log2(abs((a - b) / (c - b))) if c != b and (a - b) / (b - c) > 0 else 1.0
+        ext = c + (c - b) / (2 ** p - 1)
+        src = "Richardson 64/128/256, observed order %.2f" % p
+    elif all(n in vals for n in (64, 128)):
+        a, b = vals[64], vals[128]
+        ext = b + (b - a)  # first order
+        src = "first-order extrapolation 64/128 (run with BENCH_256=1 for Richardson)"
+    else:
+        continue
+    print("%s: %s -> extrapolated %.6g (%s); 32^3 off by %.2f %%" % (
+        key, line, ext, src, 100 * (vals[32] - ext) / ext))
+PY
+echo "results: $RES"
