@@ -394,6 +394,8 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     if (!(ts.tolerance > 0 && ts.tolerance < 1)) s->fail("tolerance", "must be in (0, 1)");
     ts.max_iterations = static_cast<int>(s->getInt("max_iterations", ts.max_iterations));
     if (ts.max_iterations < 1) s->fail("max_iterations", "must be >= 1");
+    ts.projection = static_cast<int>(s->getInt("projection", ts.projection));
+    if (ts.projection < 0 || ts.projection > 100) s->fail("projection", "must be in [0, 100]");
     ts.drag_iterations = static_cast<int>(s->getInt("drag_iterations", ts.drag_iterations));
     if (ts.drag_iterations < 1) s->fail("drag_iterations", "must be >= 1");
     ts.drag_tolerance = s->getDouble("drag_tolerance", ts.drag_tolerance);

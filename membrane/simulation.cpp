@@ -77,9 +77,11 @@ Simulation::Simulation(const Model& model) : model_(model) {
     Afc_.resize(ndof, ndof);
     Afc_.setFromTriplets(fc.begin(), fc.end());
   }
+  Kb_ = BlockMatrix(K_);
   Kc_ = extractRows(K_, cdofs_);
   Mc_ = extractRows(M_, cdofs_);
-  solver_ = std::make_unique<StepSolver>(A_, ts.solver, ts.tolerance, ts.max_iterations);
+  solver_ = std::make_unique<StepSolver>(A_, ts.solver, ts.tolerance, ts.max_iterations,
+                                         ts.projection);
   setup_s_ = seconds(t0);
 
   has_loads_ = !model.loads.empty();
@@ -162,7 +164,7 @@ void Simulation::step() {
   ut_ = u_ + tau * v_ + (0.5 * tau * tau * (1 - ts.beta2)) * a_;
   vt_ = v_ + (tau * (1 - ts.beta1)) * a_;
   if (has_loads_) externalForce(t1, f1_);
-  multiply(K_, ut_, ku_);
+  Kb_.multiply(ut_, ku_);
   // Right-hand side without drag: (1+alpha)(F1 - K u~) - alpha (F_n + Fd_n - K u_n).
   b_ = (1 + alpha) * (f1_ - ku_);
   if (alpha != 0) {

@@ -42,8 +42,9 @@ struct StepSolver::Direct {
 };
 
 StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance,
-                       int max_iterations)
-    : A_(A), kind_(kind), tolerance_(tolerance), max_iterations_(max_iterations) {
+                       int max_iterations, int projection)
+    : A_(A), kind_(kind), tolerance_(tolerance), max_iterations_(max_iterations),
+      projection_(projection) {
   const int n = static_cast<int>(A.rows());
   if (kind_ == "cholesky") {
     direct_ = std::make_unique<Direct>();
@@ -56,15 +57,10 @@ StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double to
   }
   LAMINA_CHECK(kind_ == "cg", "unknown solver '", kind_, "'");
   // Block-Jacobi: invert the 3x3 diagonal block of every node.
+  Ab_ = BlockMatrix(A);
   const int nn = n / 3;
   block_inverse_.resize(nn);
-  for (int i = 0; i < nn; ++i) {
-    Eigen::Matrix3d B = Eigen::Matrix3d::Zero();
-    for (int c = 0; c < 3; ++c)
-      for (SparseMatrix::InnerIterator it(A, 3 * i + c); it; ++it)
-        if (it.col() / 3 == i) B(c, it.col() % 3) = it.value();
-    block_inverse_[i] = B.inverse();
-  }
+  for (int i = 0; i < nn; ++i) block_inverse_[i] = Ab_.diagonalBlock(i).inverse();
   r_.resize(n);
   z_.resize(n);
   p_.resize(n);
@@ -81,22 +77,64 @@ int StepSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     return 1;
   }
   int it = 0;
-  cg(b, x, it);
+  const bool projected = projection_ > 0 && !X_.empty();
+  if (projected) project(b, x); // x and r_ from the basis, no SpMV
+  cg(b, x, it, projected);
+  if (projection_ > 0) remember(x);
   total_iterations_ += it;
   return it;
 }
 
-void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations) {
+void StepSolver::project(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  // x0 = sum (X_i . b) X_i minimizes the A-norm error over span(X); r0 = b - A x0.
+  x.setZero(b.size());
+  r_ = b;
+  for (size_t i = 0; i < X_.size(); ++i) {
+    const double c = X_[i].dot(b);
+    x += c * X_[i];
+    r_ -= c * AX_[i];
+  }
+  x0_ = x;
+}
+
+void StepSolver::remember(const Eigen::VectorXd& x) {
+  // Add the new direction d = x - x0 (A-orthonormalized) to the basis; when
+  // full, restart the basis from the current solution alone.
+  if (static_cast<int>(X_.size()) >= projection_) {
+    X_.clear();
+    AX_.clear();
+    d_ = x;
+  } else {
+    d_ = X_.empty() ? x : Eigen::VectorXd(x - x0_);
+  }
+  Ab_.multiply(d_, ad_);
+  for (int pass = 0; pass < 2; ++pass) // twice is enough (Kahan)
+    for (size_t i = 0; i < X_.size(); ++i) {
+      const double c = AX_[i].dot(d_);
+      d_ -= c * X_[i];
+      ad_ -= c * AX_[i];
+    }
+  const double nrm2 = d_.dot(ad_);
+  if (!(nrm2 > 0) || !std::isfinite(nrm2)) return;
+  const double s = 1 / std::sqrt(nrm2);
+  X_.push_back(s * d_);
+  AX_.push_back(s * ad_);
+}
+
+void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations,
+                    bool have_residual) {
   const int n = static_cast<int>(b.size());
   const int nn = n / 3;
   const double bnorm = b.norm();
   if (!(bnorm > 0)) {
-    x.setZero();
+    x.setZero(n);
     return;
   }
   if (x.size() != n) x = Eigen::VectorXd::Zero(n);
-  multiply(A_, x, q_);
-  r_ = b - q_;
+  if (!have_residual) {
+    Ab_.multiply(x, q_);
+    r_ = b - q_;
+  }
   const double target = tolerance_ * bnorm;
   double rr = r_.squaredNorm();
   if (std::sqrt(rr) <= target) return;
@@ -108,7 +146,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   }
   p_ = z_;
   for (iterations = 1; iterations <= max_iterations_; ++iterations) {
-    multiply(A_, p_, q_);
+    Ab_.multiply(p_, q_);
     const double pq = p_.dot(q_);
     if (!(pq > 0) || !std::isfinite(pq))
       throw DivergenceError("CG breakdown: A is not positive definite or the step diverged");

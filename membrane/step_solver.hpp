@@ -9,8 +9,15 @@
 /// ||b - A x|| <= tolerance ||b||. "cholesky": a sparse Cholesky
 /// factorization (CHOLMOD supernodal when built with it, else Eigen's
 /// SimplicialLDLT), exact to round-off.
+///
+/// The CG start: when @p projection > 0, the initial guess is the A-orthogonal
+/// projection of the solution on the span of the last solutions (Fischer,
+/// "Projection techniques for iterative solution of Ax = b with successive
+/// right-hand sides", 1998): the best combination of past steps in the A
+/// norm, which contains any polynomial extrapolation of them.
 
 #include "membrane/assembly.hpp"
+#include "membrane/block_matrix.hpp"
 
 #include <Eigen/Dense>
 
@@ -24,7 +31,8 @@ class StepSolver {
 public:
   /// Sets up the solver for @p A (symmetric positive definite, 3x3 block
   /// pattern). @p kind is "cg" or "cholesky".
-  StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance, int max_iterations);
+  StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance, int max_iterations,
+             int projection = 0);
   ~StepSolver();
   StepSolver(const StepSolver&) = delete;
   StepSolver& operator=(const StepSolver&) = delete;
@@ -40,12 +48,18 @@ public:
   long solves() const { return solves_; }
 
 private:
-  void cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations);
+  void cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations, bool have_residual);
+  void project(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  void remember(const Eigen::VectorXd& x);
   const SparseMatrix& A_;
+  BlockMatrix Ab_; // the same matrix in 3x3 blocks, for the CG products
   std::string kind_;
   double tolerance_;
   int max_iterations_;
   std::vector<Eigen::Matrix3d> block_inverse_; // block-Jacobi preconditioner
+  int projection_ = 0;                          // max basis size (0 = off)
+  std::vector<Eigen::VectorXd> X_, AX_;         // A-orthonormal past solutions and A X
+  Eigen::VectorXd x0_, d_, ad_;
   Eigen::VectorXd r_, z_, p_, q_;
   struct Direct;
   std::unique_ptr<Direct> direct_;
