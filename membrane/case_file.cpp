@@ -327,6 +327,7 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   Model model;
   model.name = root.getString("name", path.stem().string());
   (void)root.getString("description", "");
+  model.compare_without_drag = root.getBool("compare_without_drag", false);
 
   model.mesh = readMesh(root.table("mesh"), path);
   const Mesh& mesh = model.mesh;
@@ -511,10 +512,12 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   }
 
   // Point masses (drag paper section 4.2: the suspended mass).
+  // `mass` is the total, split equally over the selected nodes (one node for `at`).
   for (const auto& r : root.tableArray("point_mass")) {
     const double m = r.getDouble("mass");
     if (!(m > 0)) r.fail("mass", "point mass must be > 0");
-    model.point_masses.emplace_back(mesh.nearestNode(readPoint(r, "at")), m);
+    const auto nodes = selectNodes(mesh, readSelector(r), r);
+    for (int node : nodes) model.point_masses.emplace_back(node, m / double(nodes.size()));
   }
 
   // Gravity: body force rho h g (consistent = lumped row sums) plus the point masses.
@@ -560,6 +563,9 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     d.resultant = measure == "resultant";
     model.drags.push_back(std::move(d));
   }
+
+  if (model.compare_without_drag && model.drags.empty())
+    root.fail("compare_without_drag", "needs at least one [[drag]] table");
 
   // Initial state: uniform initial velocity (optional).
   if (auto ini = root.optionalTable("initial")) {

@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
       membrane::RunOptions opt;
       opt.out_dir = out_dir;
       opt.quiet = quiet;
-      const auto summary = membrane::runModel(model, opt);
+      const auto summary = membrane::runCase(model, opt);
       if (json) std::cout << summary.dump(2) << "\n";
       else
         std::cerr << "membrane: " << model.name << ": " << summary["steps"] << " steps, max |w| "

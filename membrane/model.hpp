@@ -89,6 +89,7 @@ struct Model {
   TimeSettings time;                ///< time stepping
   OutputSettings output;            ///< outputs
   Eigen::VectorXd u0, v0;           ///< initial displacement and velocity (empty = zero)
+  bool compare_without_drag = false; ///< run also without the drag and compare peaks
   int numDofs() const { return 3 * mesh.numNodes(); }
 };
 

@@ -204,4 +204,27 @@ nlohmann::json runModel(const Model& model, const RunOptions& options) {
   return MembraneRun(model, options).run();
 }
 
+nlohmann::json runCase(const Model& model, const RunOptions& options) {
+  if (!model.compare_without_drag) return runModel(model, options);
+  auto peaks = [](const nlohmann::json& s) {
+    double reaction = 0;
+    for (const auto& [name, r] : s["reactions"].items()) reaction = std::max(reaction, r["peak"].get<double>());
+    return nlohmann::json{{"max_abs_w", s["max_abs_w"]},
+                          {"max_speed", s["max_speed"]},
+                          {"peak_reaction", reaction},
+                          {"reactions", s["reactions"]}};
+  };
+  RunOptions with = options, without = options;
+  with.out_dir = options.out_dir / "with-drag";
+  without.out_dir = options.out_dir / "without-drag";
+  nlohmann::json summary = runModel(model, with);
+  Model bare = model;
+  bare.drags.clear();
+  bare.compare_without_drag = false;
+  const nlohmann::json other = runModel(bare, without);
+  summary["drag_comparison"] = {{"with_drag", peaks(summary)}, {"without_drag", peaks(other)}};
+  core::writeFileAtomically(options.out_dir / "summary.json", summary.dump(2) + "\n");
+  return summary;
+}
+
 } // namespace lamina::membrane

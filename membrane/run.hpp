@@ -26,4 +26,10 @@ struct RunOptions {
 /// Runs @p model and @return the summary object (also written to summary.json).
 nlohmann::json runModel(const Model& model, const RunOptions& options);
 
+/// `membrane run`: runModel, or for `compare_without_drag = true` two runs
+/// (DIR/with-drag, DIR/without-drag) and DIR/summary.json = the with-drag
+/// summary plus "drag_comparison" {with_drag, without_drag: {max_abs_w,
+/// peak_reaction, max_speed}}.
+nlohmann::json runCase(const Model& model, const RunOptions& options);
+
 } // namespace lamina::membrane
