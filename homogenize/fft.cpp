@@ -1,7 +1,11 @@
 #include "homogenize/fft.hpp"
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
 #include <mutex>
 #include <new>
 
@@ -24,9 +28,44 @@ std::mutex& plannerMutex() {
 }
 } // namespace
 
+std::string VectorFft::wisdomPath() {
+  if (const char* p = std::getenv("LAMINA_FFTW_WISDOM"))
+    return p;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x)
+    return std::string(x) + "/lamina/fftw-wisdom";
+  if (const char* h = std::getenv("HOME"); h && *h)
+    return std::string(h) + "/.cache/lamina/fftw-wisdom";
+  return "";
+}
+
+namespace {
+// Wisdom is an optimisation only: failures to read or write it are ignored.
+void importWisdom(const std::string& path) {
+  static bool done = false;
+  if (done || path.empty())
+    return;
+  done = true;
+  fftw_import_wisdom_from_filename(path.c_str());
+}
+
+void exportWisdom(const std::string& path) {
+  if (path.empty())
+    return;
+  try {
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::unique_ptr<char, void (*)(void*)> text(fftw_export_wisdom_to_string(), std::free);
+    if (text)
+      core::writeFileAtomically(path, text.get());
+  } catch (const std::exception&) {
+  }
+}
+} // namespace
+
 VectorFft::VectorFft(const Grid& grid, int threads, bool measure) : grid_(grid) {
   std::lock_guard<std::mutex> lock(plannerMutex());
   static const bool threads_ok = fftw_init_threads() != 0;
+  const std::string wisdom = measure ? wisdomPath() : std::string();
+  importWisdom(wisdom);
   if (threads_ok && threads > 0)
     fftw_plan_with_nthreads(threads);
   const std::size_t N = grid.size(), Nc = grid.complexSize();
@@ -41,6 +80,8 @@ VectorFft::VectorFft(const Grid& grid, int threads, bool measure) : grid_(grid) 
   c2r_ = fftw_plan_many_dft_c2r(3, n, 3, work_, nullptr, 1, static_cast<int>(Nc), real.data(),
                                 nullptr, 1, static_cast<int>(N), flags);
   LAMINA_CHECK(r2c_ && c2r_, "FFTW could not plan transforms of ", n[0], "x", n[1], "x", n[2]);
+  if (measure)
+    exportWisdom(wisdom);
 }
 
 VectorFft::~VectorFft() {

@@ -32,7 +32,7 @@ struct Options {
   double tol = 1e-5;          ///< relative residual of each load case (1e-5: C to ~5 digits)
   int max_iterations = 10000; ///< per load case; exceeding it is an error
   int threads = 0;            ///< OpenMP and FFTW threads (0: auto, 1 below 64k voxels)
-  bool measure = false;       ///< FFTW_MEASURE planning (pays off from ~64^3)
+  int measure = -1;           ///< FFTW_MEASURE planning: 1 yes, 0 no, -1 auto (above 64^3 voxels)
   bool quiet = true;          ///< no progress line
 };
 

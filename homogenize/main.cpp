@@ -44,7 +44,8 @@ void printHuman(const std::string& name, const lamina::homogenize::Result& r,
 int main(int argc, char** argv) {
   CLI::App app{"homogenize: effective stiffness and density of a voxel unit cell"};
   std::string cell_path, name, library, catalog;
-  bool json = false, overwrite = false, measure = false, quiet = false;
+  bool json = false, overwrite = false, quiet = false;
+  std::string plan = "auto";
   int threads = 0, resolution = 0;
   double tol = 1e-5;
   app.add_option("cell", cell_path, "cell file (TOML)")->required();
@@ -57,7 +58,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(2, 4096));
   app.add_option("--catalog", catalog, "catalog file (default: $LAMINA_CATALOG or built-in)");
   app.add_flag("--overwrite", overwrite, "replace an existing entry of the same name");
-  app.add_flag("--measure", measure, "FFTW_MEASURE planning (faster transforms from ~64^3)");
+  app.add_option("--fftw-plan", plan,
+                 "FFTW planning: estimate, measure (wisdom cached in ~/.cache/lamina), "
+                 "auto (measure above 64^3)")
+      ->check(CLI::IsMember({"auto", "estimate", "measure"}));
   app.add_flag("--quiet", quiet, "no progress line");
   try {
     app.parse(argc, argv);
@@ -79,7 +83,7 @@ int main(int argc, char** argv) {
     homogenize::Options opt;
     opt.tol = tol;
     opt.threads = threads;
-    opt.measure = measure;
+    opt.measure = plan == "auto" ? -1 : plan == "measure" ? 1 : 0;
     opt.quiet = quiet;
     for (double J : states) {
       const std::string entry = homogenize::entryName(name, J, sweep);
