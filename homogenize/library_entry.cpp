@@ -1,5 +1,7 @@
 #include "homogenize/library_entry.hpp"
 
+#include "core/error.hpp"
+
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -75,6 +77,59 @@ materials::Material makeEntry(const std::string& name, const micro::CellSpec& sp
   p.insert("reference_mu0", result.mu0);
   p.insert("wall_s", result.wall_s);
   return m;
+}
+
+std::vector<EntryResult> homogenizeIntoLibrary(const micro::CellSpec& spec,
+                                               const micro::UnitCell& cell,
+                                               const std::string& base, const Options& options,
+                                               materials::Library& library, bool overwrite,
+                                               const std::function<void(const EntryResult&)>& report) {
+  const std::vector<double> states = spec.sweepStates();
+  bool sweep = false;
+  for (const auto& ph : spec.phases)
+    sweep = sweep || ph.J.size() > 1;
+  for (double J : states) {
+    const std::string name = entryName(base, J, sweep);
+    if (library.contains(name) && !overwrite)
+      throw Error("entry '" + name + "' exists in " + library.path().string() +
+                  " (use --overwrite or another --name)");
+  }
+  std::vector<EntryResult> out;
+  for (double J : states) {
+    EntryResult e{entryName(base, J, sweep), J, {}};
+    Homogenizer h(gridOf(cell), cell.phase, spec.stiffnessesAt(J), spec.densities(), options);
+    e.result = h.run();
+    library.add(makeEntry(e.name, spec, cell, e.result, options, J), overwrite);
+    if (report)
+      report(e);
+    out.push_back(std::move(e));
+  }
+  return out;
+}
+
+nlohmann::json toJson(const EntryResult& e) {
+  const Result& r = e.result;
+  nlohmann::json j;
+  j["name"] = e.name;
+  nlohmann::json C = nlohmann::json::array();
+  for (int a = 0; a < 6; ++a) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int b = 0; b < 6; ++b)
+      row.push_back(r.C(a, b));
+    C.push_back(row);
+  }
+  j["C"] = C;
+  j["density"] = r.density;
+  j["iterations"] = r.iterations();
+  j["residual"] = r.maxResidual();
+  j["voxels"] = r.voxels;
+  j["volume_fraction"] = 1.0 - r.voxel_fraction.at(0); // all inclusions (voxels)
+  j["phase_fractions"] = r.voxel_fraction;
+  j["asymmetry"] = r.asymmetry;
+  j["symmetry"] = materials::toString(r.symmetry.cls);
+  j["J"] = e.J;
+  j["wall_s"] = r.wall_s;
+  return j;
 }
 
 } // namespace lamina::homogenize

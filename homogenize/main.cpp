@@ -11,7 +11,6 @@
 #include "micro/unit_cell.hpp"
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <iostream>
@@ -76,50 +75,18 @@ int main(int argc, char** argv) {
       n = {resolution, resolution, resolution};
     const micro::UnitCell cell = micro::buildCell(spec, n);
     materials::Library lib(materials::Library::resolvePath(library));
-    const std::vector<double> states = spec.sweepStates();
-    bool sweep = false;
-    for (const auto& ph : spec.phases)
-      sweep = sweep || ph.J.size() > 1;
     homogenize::Options opt;
     opt.tol = tol;
     opt.threads = threads;
     opt.measure = plan == "auto" ? -1 : plan == "measure" ? 1 : 0;
     opt.quiet = quiet;
-    for (double J : states) {
-      const std::string entry = homogenize::entryName(name, J, sweep);
-      if (lib.contains(entry) && !overwrite)
-        throw Error("entry '" + entry + "' exists in " + lib.path().string() +
-                    " (use --overwrite or another --name)");
-      homogenize::Homogenizer h(homogenize::gridOf(cell), cell.phase, spec.stiffnessesAt(J),
-                                spec.densities(), opt);
-      const homogenize::Result r = h.run();
-      lib.add(homogenize::makeEntry(entry, spec, cell, r, opt, J), overwrite);
-      if (json) {
-        nlohmann::json j;
-        j["name"] = entry;
-        nlohmann::json C = nlohmann::json::array();
-        for (int a = 0; a < 6; ++a) {
-          nlohmann::json row = nlohmann::json::array();
-          for (int b = 0; b < 6; ++b)
-            row.push_back(r.C(a, b));
-          C.push_back(row);
-        }
-        j["C"] = C;
-        j["density"] = r.density;
-        j["iterations"] = r.iterations();
-        j["residual"] = r.maxResidual();
-        j["voxels"] = r.voxels;
-        j["volume_fraction"] = 1.0 - r.voxel_fraction[0]; // all inclusions (voxels)
-        j["phase_fractions"] = r.voxel_fraction;
-        j["asymmetry"] = r.asymmetry;
-        j["symmetry"] = materials::toString(r.symmetry.cls);
-        j["J"] = J;
-        j["wall_s"] = r.wall_s;
-        std::cout << j.dump() << std::endl;
-      } else {
-        printHuman(entry, r, cell, lib.path().string());
-      }
-    }
+    homogenize::homogenizeIntoLibrary(
+        spec, cell, name, opt, lib, overwrite, [&](const homogenize::EntryResult& e) {
+          if (json)
+            std::cout << homogenize::toJson(e).dump() << std::endl;
+          else
+            printHuman(e.name, e.result, cell, lib.path().string());
+        });
   } catch (const lamina::DivergenceError& e) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());
     return lamina::kExitDivergence;

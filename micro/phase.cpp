@@ -17,26 +17,6 @@ materials::Stiffness Phase::stiffnessAt(double J) const {
 
 namespace {
 
-materials::GvboParameters readGvboTable(const core::TableReader& g, double E0, double nu0) {
-  materials::GvboParameters p;
-  p.E0 = E0;
-  p.nu0 = nu0;
-  p.Et = g.getDouble("Et");
-  p.p = g.getDouble("p");
-  p.a1 = g.getDouble("a1");
-  p.a2 = g.getDouble("a2");
-  p.a3 = g.getDouble("a3");
-  p.k1 = g.getDouble("k1");
-  p.k2 = g.getDouble("k2");
-  p.k3 = g.getDouble("k3");
-  p.k4 = g.getDouble("k4");
-  p.Em = g.getDouble("Em");
-  p.A0 = g.getDouble("A0");
-  p.Ac = g.getDouble("Ac");
-  p.Af = g.getDouble("Af");
-  return p;
-}
-
 materials::Stiffness isotropicChecked(const core::TableReader& t, double E, double nu) {
   if (!(E > 0) || !std::isfinite(E))
     t.fail("E", "Young's modulus must be positive");
@@ -85,7 +65,7 @@ Phase readPhase(const core::TableReader& t, const CatalogProvider& catalog) {
     } else if (ph.law == "gvbo") {
       const double E = t.getDouble("E"), nu = t.getDouble("nu");
       ph.C = isotropicChecked(t, E, nu);
-      ph.gvbo = readGvboTable(t.table("gvbo"), E, nu);
+      ph.gvbo = materials::readGvboParameters(t.table("gvbo"), E, nu);
     } else {
       t.fail("law", "unknown law '" + ph.law + "' (isotropic, anisotropic, gvbo)");
     }
