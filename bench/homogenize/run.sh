@@ -18,6 +18,8 @@ TOL="${BENCH_TOL:-1e-5}"
 LIB="$OUT/library.toml"
 rm -f "$LIB" "$LIB.lock"
 RES="$OUT/results.jsonl"
+export LAMINA_FFTW_WISDOM="$OUT/fftw-wisdom"   # fresh plans: planning is measured below
+rm -f "$LAMINA_FFTW_WISDOM"
 : > "$RES"
 SIZES="64 128"
 [ "${BENCH_QUICK:-0}" = 1 ] && SIZES="64"
@@ -46,13 +48,27 @@ print("%-16s %4d^3 %d thr  wall %7.2f s  peak %7.0f MiB  iterations %s  C11 %.6g
     j["C"][0][0], j["C"][3][3]))'
 }
 
-echo "homogenize bench: tol $TOL, $(nproc) cores, $(date -u +%FT%TZ)"
+echo "homogenize bench: tol $TOL, $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%FT%TZ)"
+echo "--- FFTW planning (FFTW_MEASURE above 64^3, wisdom cached in $LAMINA_FFTW_WISDOM):"
+echo "    a first run at each size and thread count pays it; the runs below reuse it"
+for n in $SIZES 256; do
+  [ "$n" = 256 ] && [ "${BENCH_256:-0}" != 1 ] && continue
+  for t in 1 2; do
+    /usr/bin/time -f "    plan ${n}^3 ${t} thr: %e s" "$BIN" cases/cells/sphere.toml --name plan \
+      --library "$LIB" --overwrite --resolution "$n" --threads "$t" --tol 1 --quiet > /dev/null
+  done
+done
 echo "--- sphere (19 %, E 156 MPa / 890 MPa) and polyurea cells, 1 and 2 threads"
 for n in $SIZES; do
   for t in 1 2; do
     run sphere cases/cells/sphere.toml "$n" "$t"
     run polyurea cases/cells/polyurea.toml "$n" "$t"
   done
+done
+
+echo "--- sphere at tol 1e-4 (C to 5+ digits for this cell, checked below), 2 threads"
+for n in $SIZES; do
+  TOL=1e-4 run sphere-tol1e-4 cases/cells/sphere.toml "$n" 2
 done
 
 echo "--- contrast sweep: sphere inclusion E (matrix 156 MPa), 2 threads"
@@ -91,5 +107,19 @@ for key, (i, j) in names.items():
         continue
     print("%s: %s -> extrapolated %.6g (%s); 32^3 off by %.2f %%" % (
         key, line, ext, src, 100 * (vals[32] - ext) / ext))
+PY
+/usr/bin/python3 - "$RES" <<'PY'
+import json, sys
+rows = [json.loads(l) for l in open(sys.argv[1])]
+ref = {r["n"]: r["C"] for r in rows if r["case"] == "study"}
+print("--- digits: worst relative error of the constants (|C_ij| > 1e-6 max|C|) against tol 1e-8")
+for r in rows:
+    if r["case"] not in ("sphere", "sphere-tol1e-4") or r["n"] not in ref:
+        continue
+    C, R = r["C"], ref[r["n"]]
+    m = max(abs(x) for row in R for x in row)
+    err = max(abs(C[i][j] - R[i][j]) / abs(R[i][j]) for i in range(6) for j in range(6)
+              if abs(R[i][j]) > 1e-6 * m)
+    print("  %-16s %4d^3 %d thr: %.1e" % (r["case"], r["n"], r["threads"], err))
 PY
 echo "results: $RES"
