@@ -24,6 +24,7 @@ double GreenOperator::apply(const double* r, double* z) const {
   const std::size_t Nc = grid_.complexSize();
   const double norm = 1.0 / static_cast<double>(grid_.size()); // FFTW is unnormalized
   const double beta = (lambda0_ + mu0_) / (lambda0_ + 2 * mu0_);
+  const double norm_mu = norm / mu0_;
   const double h0 = grid_.h[0], h1 = grid_.h[1], h2 = grid_.h[2];
   // |q|^2 below this is a zero of q (cos(pi/2) is 6e-17, not 0)
   const double qmax2 = 4.0 * (1 / (h0 * h0) + 1 / (h1 * h1) + 1 / (h2 * h2));
@@ -48,7 +49,8 @@ double GreenOperator::apply(const double* r, double* z) const {
           (*a)[0] = (*a)[1] = (*b)[0] = (*b)[1] = (*c)[0] = (*c)[1] = 0;
           continue;
         }
-        const double inv = norm / (mu0_ * qq), bq = beta / qq;
+        const double rq = 1.0 / qq; // one division per mode
+        const double inv = norm_mu * rq, bq = beta * rq;
         // Parseval over the half spectrum: the modes 0 < k < n2/2 stand for
         // themselves and their conjugates
         const double weight = (k == 0 || 2 * k == n2) ? 1.0 : 2.0;
