@@ -29,8 +29,7 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
   for (std::int32_t p : phase_)
     LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C.size(), "phase index ", p,
                  " has no stiffness");
-  planes_.assign(2 * 6 * static_cast<std::size_t>(grid.n[1]) * static_cast<std::size_t>(grid.n[2]),
-                 0.0);
+  // planes_ is sized by apply() for the number of threads it runs with
 }
 
 // Stress of voxel plane i (voxels i, spanning nodes i and i+1) into S
@@ -42,7 +41,7 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
 void CellOperator::stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S,
                                double* acc, double* energy, double* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
-  const std::size_t N = grid_.size(), P = static_cast<std::size_t>(n1) * n2;
+  const std::size_t N = grid_.size(), P = componentStride();
   const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
   const int i1 = (i + 1 == grid_.n[0]) ? 0 : i + 1;
   const std::size_t L = static_cast<std::size_t>(n2) + 1; // one wrapped column
@@ -130,7 +129,7 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
 void CellOperator::divergencePlane(int i, const double* prev, const double* cur, double* f,
                                    double* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
-  const std::size_t N = grid_.size(), P = static_cast<std::size_t>(n1) * n2;
+  const std::size_t N = grid_.size(), P = componentStride();
   const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
   const std::size_t L = static_cast<std::size_t>(n2) + 1; // index k+1 holds voxel k, 0 holds n2-1
   double* X0 = scratch;         // x-terms of f_x, f_y, f_z: sigma_xx, xy, xz
@@ -179,10 +178,20 @@ void CellOperator::divergencePlane(int i, const double* prev, const double* cur,
   }
 }
 
+// Stress planes hold 6 components of n1*n2 values. With power-of-two grids
+// the components would sit a multiple of 4 KiB apart and all map to the same
+// L1 cache sets (the divergence reads 24 such streams at once); padding each
+// component by 24 doubles (192 bytes) spreads them over distinct sets.
+std::size_t CellOperator::componentStride() const {
+  return static_cast<std::size_t>(grid_.n[1]) * static_cast<std::size_t>(grid_.n[2]) + 24;
+}
+
+std::size_t CellOperator::planeStride() const { return 6 * componentStride() + 8; }
+
 void CellOperator::apply(const double* u, const std::array<double, 6>& E, double* f,
                          std::array<double, 6>* average, double* energy) const {
   const int n0 = grid_.n[0];
-  const std::size_t P = 6 * static_cast<std::size_t>(grid_.n[1]) * static_cast<std::size_t>(grid_.n[2]);
+  const std::size_t P = planeStride();
   const int nt = std::max(1, std::min(omp_get_max_threads(), n0));
   if (planes_.size() < 2 * P * static_cast<std::size_t>(nt))
     planes_.assign(2 * P * static_cast<std::size_t>(nt), 0.0);

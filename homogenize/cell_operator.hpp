@@ -57,6 +57,8 @@ public:
   const Grid& grid() const { return grid_; }
 
 private:
+  std::size_t componentStride() const;
+  std::size_t planeStride() const;
   void stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S, double* acc,
                    double* energy, double* scratch) const;
   void divergencePlane(int i, const double* prev, const double* cur, double* f,
