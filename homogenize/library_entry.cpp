@@ -71,6 +71,10 @@ materials::Material makeEntry(const std::string& name, const micro::CellSpec& sp
   for (int it : result.iterations())
     its.push_back(it);
   p.insert("iterations", its);
+  toml::array residuals;
+  for (const auto& c : result.cases)
+    residuals.push_back(c.residual);
+  p.insert("residuals", residuals);
   p.insert("asymmetry_before_symmetrizing", result.asymmetry);
   p.insert("symmetry", materials::toString(result.symmetry.cls));
   p.insert("reference_lambda0", result.lambda0);
@@ -122,6 +126,10 @@ nlohmann::json toJson(const EntryResult& e) {
   j["density"] = r.density;
   j["iterations"] = r.iterations();
   j["residual"] = r.maxResidual();
+  nlohmann::json residuals = nlohmann::json::array();
+  for (const auto& c : r.cases)
+    residuals.push_back(c.residual);
+  j["residuals"] = residuals;
   j["voxels"] = r.voxels;
   j["volume_fraction"] = 1.0 - r.voxel_fraction.at(0); // all inclusions (voxels)
   j["phase_fractions"] = r.voxel_fraction;

@@ -31,7 +31,10 @@ void printHuman(const std::string& name, const lamina::homogenize::Result& r,
   std::printf("load cases: iterations");
   for (int it : r.iterations())
     std::printf(" %d", it);
-  std::printf(", max residual %.3g\n", r.maxResidual());
+  std::printf(", final residuals");
+  for (const auto& c : r.cases)
+    std::printf(" %.2g", c.residual);
+  std::printf("\n");
   std::printf("asymmetry before symmetrizing %.3g, symmetry %s (tol %.1g), wall %.2f s\n",
               r.asymmetry, lamina::materials::toString(r.symmetry.cls).c_str(), r.symmetry_tol,
               r.wall_s);
