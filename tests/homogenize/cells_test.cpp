@@ -13,6 +13,9 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 #include <memory>
 
 namespace lamina::test {
@@ -111,7 +114,7 @@ TEST(LibraryEntry, RoundTripsWithProvenance) {
                             spec.densities(), opt);
   const auto r = h.run();
   EXPECT_NEAR(r.density, 1100.0, 1e-9);
-  const auto dir = std::filesystem::temp_directory_path() / "lamina-homog-test";
+  const auto dir = std::filesystem::temp_directory_path() / (std::string("lamina-homog-test") + "-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto path = dir / "library.toml";
   std::filesystem::remove(path);
@@ -141,7 +144,7 @@ TEST(LibraryEntry, SweepNames) {
 // object with the documented keys; the single-sphere C there is cubic
 // (C11 = C22 = C33 to 1e-9) and its density the average of 1100 kg/m^3.
 TEST(Program, JsonInterface) {
-  const auto dir = std::filesystem::temp_directory_path() / "lamina-homog-cli";
+  const auto dir = std::filesystem::temp_directory_path() / (std::string("lamina-homog-cli") + "-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto lib = dir / "lib.toml";
   std::filesystem::remove(lib);

@@ -12,6 +12,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
+
+#include <unistd.h>
 #include <fstream>
 
 namespace lamina::micro {
@@ -132,7 +135,7 @@ TEST(GvboPhase, ModuliAtJMatchHandValues) {
 TEST(PhaseMap, WritesHdf5AndXdmfThatReadBack) {
   const auto s = spec(6, "shape = \"layer\"\nnormal = \"x\"\nthickness = 0.4\n");
   UnitCell c = buildCell(s, {6, 4, 2});
-  const auto dir = std::filesystem::temp_directory_path() / "lamina-micro-test";
+  const auto dir = std::filesystem::temp_directory_path() / (std::string("lamina-micro-test") + "-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto h5 = dir / "phases.h5";
   writePhaseMap(c, {"m", "i"}, h5);
