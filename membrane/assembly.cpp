@@ -36,7 +36,8 @@ Matrix9 elementMass(const Mesh& mesh, int e, const Section& s, bool lumped) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       const double v = lumped ? (i == j ? m / 3 : 0.0) : m / 12 * (i == j ? 2.0 : 1.0);
-      for (int c = 0; c < 3; ++c) Me(3 * i + c, 3 * j + c) = v;
+      for (int c = 0; c < 3; ++c)
+        Me(3 * i + c, 3 * j + c) = v;
     }
   return Me;
 }
@@ -48,7 +49,8 @@ void nodeGraph(const Mesh& mesh, std::vector<int>& start, std::vector<int>& cols
   std::vector<std::vector<int>> adj(n);
   for (const auto& t : mesh.triangles)
     for (int a : t)
-      for (int b : t) adj[a].push_back(b);
+      for (int b : t)
+        adj[a].push_back(b);
   start.assign(n + 1, 0);
   for (int i = 0; i < n; ++i) {
     auto& v = adj[i];
@@ -57,7 +59,8 @@ void nodeGraph(const Mesh& mesh, std::vector<int>& start, std::vector<int>& cols
     start[i + 1] = start[i] + static_cast<int>(v.size());
   }
   cols.resize(start[n]);
-  for (int i = 0; i < n; ++i) std::copy(adj[i].begin(), adj[i].end(), cols.begin() + start[i]);
+  for (int i = 0; i < n; ++i)
+    std::copy(adj[i].begin(), adj[i].end(), cols.begin() + start[i]);
 }
 
 /// Empty row-major matrix with the scalar pattern of the 3x3-block node graph.
@@ -125,7 +128,8 @@ GlobalMatrices assemble(const Mesh& mesh, const std::vector<Section>& sections, 
 std::vector<double> nodalAreas(const Mesh& mesh) {
   std::vector<double> a(mesh.numNodes(), 0.0);
   for (int e = 0; e < mesh.numElements(); ++e)
-    for (int i : mesh.triangles[e]) a[i] += mesh.area(e) / 3;
+    for (int i : mesh.triangles[e])
+      a[i] += mesh.area(e) / 3;
   return a;
 }
 

@@ -25,7 +25,8 @@ BlockMatrix::BlockMatrix(const SparseMatrix& A) {
       const int b = start_[i] + k;
       col_[b] = inner[outer[3 * i] + 3 * k] / 3;
       for (int c = 0; c < 3; ++c)
-        for (int d = 0; d < 3; ++d) val_[9 * b + 3 * c + d] = v[outer[3 * i + c] + 3 * k + d];
+        for (int d = 0; d < 3; ++d)
+          val_[9 * b + 3 * c + d] = v[outer[3 * i + c] + 3 * k + d];
     }
 }
 
@@ -58,7 +59,8 @@ Eigen::Matrix3d BlockMatrix::diagonalBlock(int i) const {
     if (col_[b] == i) {
       Eigen::Matrix3d m;
       for (int c = 0; c < 3; ++c)
-        for (int d = 0; d < 3; ++d) m(c, d) = val_[9 * b + 3 * c + d];
+        for (int d = 0; d < 3; ++d)
+          m(c, d) = val_[9 * b + 3 * c + d];
       return m;
     }
   return Eigen::Matrix3d::Zero();

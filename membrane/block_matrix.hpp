@@ -30,8 +30,8 @@ public:
   int nodes() const { return static_cast<int>(start_.size()) - 1; }
 
 private:
-  std::vector<int> start_; // block row pointers
-  std::vector<int> col_;   // block column (node) of each block
+  std::vector<int> start_;  // block row pointers
+  std::vector<int> col_;    // block column (node) of each block
   std::vector<double> val_; // 9 values per block, row-major
 };
 

@@ -25,19 +25,23 @@ public:
   materials::Material get(const std::string& name, const core::TableReader& r,
                           const std::string& key) {
     auto& lib = library();
-    if (lib.contains(name)) return lib.get(name);
+    if (lib.contains(name))
+      return lib.get(name);
     auto* cat = catalog();
     if (cat && cat->contains(name)) {
       const auto& entry = cat->get(name);
       auto m = entry.toMaterial();
-      if (!m.thickness) m.thickness = entry.nominal_thickness; // default section thickness
+      if (!m.thickness)
+        m.thickness = entry.nominal_thickness; // default section thickness
       return m;
     }
     std::string have;
-    for (const auto& n : lib.names()) have += (have.empty() ? "" : ", ") + n;
+    for (const auto& n : lib.names())
+      have += (have.empty() ? "" : ", ") + n;
     std::string cat_have;
     if (cat)
-      for (const auto& n : cat->names()) cat_have += (cat_have.empty() ? "" : ", ") + n;
+      for (const auto& n : cat->names())
+        cat_have += (cat_have.empty() ? "" : ", ") + n;
     r.fail(key, "unknown material '" + name + "': library " + lib.path().string() + " has [" +
                     have + "]" + (cat ? "; catalog has [" + cat_have + "]" : ""));
   }
@@ -54,7 +58,8 @@ private:
       catalog_tried_ = true;
       const auto p = sources_.catalog_path.empty() ? materials::Catalog::defaultPath()
                                                    : std::filesystem::path(sources_.catalog_path);
-      if (std::filesystem::exists(p)) catalog_ = std::make_unique<materials::Catalog>(p);
+      if (std::filesystem::exists(p))
+        catalog_ = std::make_unique<materials::Catalog>(p);
     }
     return catalog_.get();
   }
@@ -66,7 +71,8 @@ private:
 
 Eigen::Vector2d readPoint(const core::TableReader& r, const std::string& key) {
   const auto v = r.getDoubleArray(key);
-  if (v.size() != 2) r.fail(key, "expected [x, y]");
+  if (v.size() != 2)
+    r.fail(key, "expected [x, y]");
   return {v[0], v[1]};
 }
 
@@ -75,9 +81,11 @@ Eigen::Vector3d readDirection(const core::TableReader& r, const Eigen::Vector3d&
     r.fail("direction", "give either direction or inclination_deg, not both");
   if (r.has("direction")) {
     const auto v = r.getDoubleArray("direction");
-    if (v.size() != 3) r.fail("direction", "expected [dx, dy, dz]");
+    if (v.size() != 3)
+      r.fail("direction", "expected [dx, dy, dz]");
     Eigen::Vector3d d(v[0], v[1], v[2]);
-    if (!(d.norm() > 0)) r.fail("direction", "direction must be non-zero");
+    if (!(d.norm() > 0))
+      r.fail("direction", "direction must be non-zero");
     return d.normalized();
   }
   if (r.has("inclination_deg")) {
@@ -101,8 +109,10 @@ Selector readSelector(const core::TableReader& r) {
   Selector s;
   int count = 0;
   for (const char* k : {"nodes", "box", "at", "region", "all"})
-    if (r.has(k)) ++count;
-  if (count != 1) r.failHere("give exactly one of nodes, box, at, region, all");
+    if (r.has(k))
+      ++count;
+  if (count != 1)
+    r.failHere("give exactly one of nodes, box, at, region, all");
   if (r.has("nodes")) {
     s.kind = s.key = "nodes";
     s.name = r.getString("nodes");
@@ -120,7 +130,8 @@ Selector readSelector(const core::TableReader& r) {
     s.name = r.getString("region");
   } else {
     s.kind = s.key = "all";
-    if (!r.getBool("all", false)) r.fail("all", "all = false selects nothing");
+    if (!r.getBool("all", false))
+      r.fail("all", "all = false selects nothing");
   }
   return s;
 }
@@ -128,9 +139,11 @@ Selector readSelector(const core::TableReader& r) {
 int regionIndex(const Mesh& m, const std::string& name, const core::TableReader& r,
                 const std::string& key) {
   for (size_t i = 0; i < m.regions.size(); ++i)
-    if (m.regions[i] == name) return static_cast<int>(i);
+    if (m.regions[i] == name)
+      return static_cast<int>(i);
   std::string have;
-  for (const auto& n : m.regions) have += (have.empty() ? "" : ", ") + n;
+  for (const auto& n : m.regions)
+    have += (have.empty() ? "" : ", ") + n;
   r.fail(key, "mesh " + m.source + " has no region '" + name + "' (regions: " + have + ")");
 }
 
@@ -145,26 +158,31 @@ std::vector<int> selectNodes(const Mesh& m, const Selector& s, const core::Table
     auto it = m.node_sets.find(s.name);
     if (it == m.node_sets.end()) {
       std::string have;
-      for (const auto& [n, v] : m.node_sets) have += (have.empty() ? "" : ", ") + n;
-      r.fail("nodes", "mesh " + m.source + " has no node set '" + s.name + "' (sets: " + have +
-                          ")");
+      for (const auto& [n, v] : m.node_sets)
+        have += (have.empty() ? "" : ", ") + n;
+      r.fail("nodes",
+             "mesh " + m.source + " has no node set '" + s.name + "' (sets: " + have + ")");
     }
     out = it->second;
   } else if (s.kind == "box") {
     for (int i = 0; i < m.numNodes(); ++i)
-      if (inBox(m.nodes[i], s.box, tol)) out.push_back(i);
+      if (inBox(m.nodes[i], s.box, tol))
+        out.push_back(i);
   } else if (s.kind == "at") {
     out.push_back(m.nearestNode(s.at));
   } else if (s.kind == "region") {
     const int reg = regionIndex(m, s.name, r, "region");
     std::set<int> nodes;
     for (int e = 0; e < m.numElements(); ++e)
-      if (m.region_of[e] == reg) nodes.insert(m.triangles[e].begin(), m.triangles[e].end());
+      if (m.region_of[e] == reg)
+        nodes.insert(m.triangles[e].begin(), m.triangles[e].end());
     out.assign(nodes.begin(), nodes.end());
   } else {
-    for (int i = 0; i < m.numNodes(); ++i) out.push_back(i);
+    for (int i = 0; i < m.numNodes(); ++i)
+      out.push_back(i);
   }
-  if (out.empty()) r.fail(s.key, "selects no node of mesh " + m.source);
+  if (out.empty())
+    r.fail(s.key, "selects no node of mesh " + m.source);
   return out;
 }
 
@@ -175,7 +193,8 @@ std::vector<int> selectElements(const Mesh& m, const Selector& s, const core::Ta
     r.fail("nodes", "this load acts on elements: select them with box, at, region or all");
   } else if (s.kind == "box") {
     for (int e = 0; e < m.numElements(); ++e)
-      if (inBox(m.centroid(e), s.box, tol)) out.push_back(e);
+      if (inBox(m.centroid(e), s.box, tol))
+        out.push_back(e);
   } else if (s.kind == "at") {
     // The triangle containing the point (barycentric test).
     for (int e = 0; e < m.numElements() && out.empty(); ++e) {
@@ -192,11 +211,14 @@ std::vector<int> selectElements(const Mesh& m, const Selector& s, const core::Ta
   } else if (s.kind == "region") {
     const int reg = regionIndex(m, s.name, r, "region");
     for (int e = 0; e < m.numElements(); ++e)
-      if (m.region_of[e] == reg) out.push_back(e);
+      if (m.region_of[e] == reg)
+        out.push_back(e);
   } else {
-    for (int e = 0; e < m.numElements(); ++e) out.push_back(e);
+    for (int e = 0; e < m.numElements(); ++e)
+      out.push_back(e);
   }
-  if (out.empty()) r.fail(s.key, "selects no element of mesh " + m.source);
+  if (out.empty())
+    r.fail(s.key, "selects no element of mesh " + m.source);
   return out;
 }
 
@@ -207,16 +229,22 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
     const double Ly = r.getDouble("Ly", Lx);
     const auto nx = r.getInt("nx");
     const auto ny = r.getInt("ny", nx);
-    if (!(Lx > 0)) r.fail("Lx", "must be > 0");
-    if (!(Ly > 0)) r.fail("Ly", "must be > 0");
-    if (nx < 1 || nx > 100000) r.fail("nx", "must be in [1, 100000]");
-    if (ny < 1 || ny > 100000) r.fail("ny", "must be in [1, 100000]");
+    if (!(Lx > 0))
+      r.fail("Lx", "must be > 0");
+    if (!(Ly > 0))
+      r.fail("Ly", "must be > 0");
+    if (nx < 1 || nx > 100000)
+      r.fail("nx", "must be in [1, 100000]");
+    if (ny < 1 || ny > 100000)
+      r.fail("ny", "must be in [1, 100000]");
     return structuredRectangle(Lx, Ly, static_cast<int>(nx), static_cast<int>(ny));
   }
   if (type == "gmsh") {
     std::filesystem::path file = r.getString("file");
-    if (file.is_relative()) file = case_path.parent_path() / file;
-    if (!std::filesystem::exists(file)) r.fail("file", "mesh file not found: " + file.string());
+    if (file.is_relative())
+      file = case_path.parent_path() / file;
+    if (!std::filesystem::exists(file))
+      r.fail("file", "mesh file not found: " + file.string());
     return readGmsh(file);
   }
   r.fail("type", "unknown mesh type '" + type + "' (rectangle, gmsh)");
@@ -238,17 +266,22 @@ Section readSection(const core::TableReader& r, MaterialResolver& res) {
     default_thickness = m.thickness;
   } else if (iso) {
     const double E = r.getDouble("E"), nu = r.getDouble("nu");
-    if (!(E > 0)) r.fail("E", "must be > 0");
-    if (!(nu > -1 && nu < 0.5)) r.fail("nu", "must be in (-1, 0.5)");
+    if (!(E > 0))
+      r.fail("E", "must be > 0");
+    if (!(nu > -1 && nu < 0.5))
+      r.fail("nu", "must be in (-1, 0.5)");
     s.D = materials::Stiffness::isotropic(E, nu).matrix();
     s.density = r.getDouble("density");
     s.material = "isotropic E=" + std::to_string(E) + " nu=" + std::to_string(nu);
   } else if (aniso) {
     const auto C = r.getMatrix("C");
-    if (C.size() != 6) r.fail("C", "expected 6 rows of 6 (Pa, lamina order)");
+    if (C.size() != 6)
+      r.fail("C", "expected 6 rows of 6 (Pa, lamina order)");
     for (int i = 0; i < 6; ++i) {
-      if (C[i].size() != 6) r.fail("C", "expected 6 rows of 6 (Pa, lamina order)");
-      for (int j = 0; j < 6; ++j) s.D(i, j) = C[i][j];
+      if (C[i].size() != 6)
+        r.fail("C", "expected 6 rows of 6 (Pa, lamina order)");
+      for (int j = 0; j < 6; ++j)
+        s.D(i, j) = C[i][j];
     }
     s.density = r.getDouble("density");
     s.material = "inline C";
@@ -264,11 +297,11 @@ Section readSection(const core::TableReader& r, MaterialResolver& res) {
     }
     materials::Material m;
     try {
-      m = materials::makeLayup("case layup", plies, [&](const std::string& n) {
-        return res.get(n, r, "plies");
-      });
+      m = materials::makeLayup("case layup", plies,
+                               [&](const std::string& n) { return res.get(n, r, "plies"); });
     } catch (const Error& e) {
-      if (!e.context().file.empty()) throw;
+      if (!e.context().file.empty())
+        throw;
       r.fail("plies", e.message());
     }
     s.D = m.C.matrix();
@@ -278,7 +311,8 @@ Section readSection(const core::TableReader& r, MaterialResolver& res) {
   }
   if (r.has("thickness") || !default_thickness) {
     s.thickness = r.getDouble("thickness");
-    if (!(s.thickness > 0)) r.fail("thickness", "thickness must be > 0");
+    if (!(s.thickness > 0))
+      r.fail("thickness", "thickness must be > 0");
   } else {
     s.thickness = *default_thickness;
   }
@@ -305,7 +339,8 @@ void addTraction(const Mesh& m, const std::vector<int>& elems, const Eigen::Vect
       const Eigen::Vector2d p = 0.5 * (m.nodes[t[q]] + m.nodes[t[(q + 1) % 3]]);
       const double w = A / 3 * traction(p);
       for (int k : {q, (q + 1) % 3})
-        for (int c = 0; c < 3; ++c) f[3 * t[k] + c] += 0.5 * w * dir[c];
+        for (int c = 0; c < 3; ++c)
+          f[3 * t[k] + c] += 0.5 * w * dir[c];
     }
   }
 }
@@ -317,7 +352,8 @@ toml::table loadCaseDocument(const std::filesystem::path& path,
   if (!std::filesystem::exists(path))
     throw Error("case file not found", ErrorContext{path.string(), 0, ""});
   toml::table doc = core::parseTomlFile(path);
-  for (const auto& o : overrides) core::applyOverride(doc, o);
+  for (const auto& o : overrides)
+    core::applyOverride(doc, o);
   return doc;
 }
 
@@ -339,12 +375,14 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   model.sections.assign(mesh.regions.size(), Section{});
   std::vector<bool> assigned(mesh.regions.size(), false);
   const auto sections = root.tableArray("section");
-  if (sections.empty()) root.fail("section", "at least one [[section]] is required");
+  if (sections.empty())
+    root.fail("section", "at least one [[section]] is required");
   for (const auto& sr : sections) {
     const Section s = readSection(sr, resolver);
     if (sr.has("region")) {
       const int reg = regionIndex(mesh, sr.getString("region"), sr, "region");
-      if (assigned[reg]) sr.fail("region", "region '" + mesh.regions[reg] + "' assigned twice");
+      if (assigned[reg])
+        sr.fail("region", "region '" + mesh.regions[reg] + "' assigned twice");
       model.sections[reg] = s;
       model.sections[reg].name = mesh.regions[reg];
       assigned[reg] = true;
@@ -358,20 +396,25 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     }
   }
   for (size_t g = 0; g < assigned.size(); ++g)
-    if (!assigned[g]) root.fail("section", "mesh region '" + mesh.regions[g] + "' has no section");
+    if (!assigned[g])
+      root.fail("section", "mesh region '" + mesh.regions[g] + "' has no section");
 
   // Time and solver.
   {
     const auto t = root.table("time");
     auto& ts = model.time;
     ts.dt = t.getDouble("dt");
-    if (!(ts.dt > 0) || !std::isfinite(ts.dt)) t.fail("dt", "time step dt must be > 0");
+    if (!(ts.dt > 0) || !std::isfinite(ts.dt))
+      t.fail("dt", "time step dt must be > 0");
     ts.t_end = t.getDouble("t_end");
-    if (!(ts.t_end > 0)) t.fail("t_end", "t_end must be > 0");
+    if (!(ts.t_end > 0))
+      t.fail("t_end", "t_end must be > 0");
     ts.beta1 = t.getDouble("beta1", 0.5);
     ts.beta2 = t.getDouble("beta2", 0.5);
-    if (ts.beta1 < 0 || ts.beta1 > 1) t.fail("beta1", "must be in [0, 1]");
-    if (ts.beta2 < 0 || ts.beta2 > 1) t.fail("beta2", "must be in [0, 1]");
+    if (ts.beta1 < 0 || ts.beta1 > 1)
+      t.fail("beta1", "must be in [0, 1]");
+    if (ts.beta2 < 0 || ts.beta2 > 1)
+      t.fail("beta2", "must be in [0, 1]");
     ts.hht_alpha = t.getDouble("hht_alpha", 0.0);
     if (ts.hht_alpha < -1.0 / 3 || ts.hht_alpha > 0)
       t.fail("hht_alpha", "HHT alpha must be in [-1/3, 0]");
@@ -392,21 +435,27 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     if (ts.solver != "cg" && ts.solver != "cholesky")
       s->fail("type", "solver type must be \"cg\" or \"cholesky\"");
     ts.tolerance = s->getDouble("tolerance", ts.tolerance);
-    if (!(ts.tolerance > 0 && ts.tolerance < 1)) s->fail("tolerance", "must be in (0, 1)");
+    if (!(ts.tolerance > 0 && ts.tolerance < 1))
+      s->fail("tolerance", "must be in (0, 1)");
     ts.max_iterations = static_cast<int>(s->getInt("max_iterations", ts.max_iterations));
-    if (ts.max_iterations < 1) s->fail("max_iterations", "must be >= 1");
+    if (ts.max_iterations < 1)
+      s->fail("max_iterations", "must be >= 1");
     ts.projection = static_cast<int>(s->getInt("projection", ts.projection));
-    if (ts.projection < 0 || ts.projection > 100) s->fail("projection", "must be in [0, 100]");
+    if (ts.projection < 0 || ts.projection > 100)
+      s->fail("projection", "must be in [0, 100]");
     ts.drag_iterations = static_cast<int>(s->getInt("drag_iterations", ts.drag_iterations));
-    if (ts.drag_iterations < 1) s->fail("drag_iterations", "must be >= 1");
+    if (ts.drag_iterations < 1)
+      s->fail("drag_iterations", "must be >= 1");
     ts.drag_tolerance = s->getDouble("drag_tolerance", ts.drag_tolerance);
   }
   if (auto o = root.optionalTable("output")) {
     model.output.field_every = static_cast<int>(o->getInt("field_every", 10));
     model.output.energy_every = static_cast<int>(o->getInt("energy_every", 1));
     model.output.fields = o->getBool("fields", true);
-    if (model.output.field_every < 0) o->fail("field_every", "must be >= 0");
-    if (model.output.energy_every < 1) o->fail("energy_every", "must be >= 1");
+    if (model.output.field_every < 0)
+      o->fail("field_every", "must be >= 0");
+    if (model.output.energy_every < 1)
+      o->fail("energy_every", "must be >= 1");
   }
 
   // Constraints: [[fixed]] and [[strike]].
@@ -418,7 +467,8 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
         r.fail("components", "components is a subset of \"xyz\"");
     for (int node : nodes)
       for (int comp = 0; comp < 3; ++comp) {
-        if (comps.find("xyz"[comp]) == std::string::npos) continue;
+        if (comps.find("xyz"[comp]) == std::string::npos)
+          continue;
         const int dof = 3 * node + comp;
         if (owner[dof] >= 0)
           r.failHere("node " + std::to_string(node) + " is already constrained by '" +
@@ -432,8 +482,9 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   for (const auto& r : root.tableArray("fixed")) {
     const Selector sel = readSelector(r);
     Constraint c;
-    c.name = r.getString("name", sel.kind == "nodes" ? sel.name
-                                                     : "fixed" + std::to_string(model.constraints.size()));
+    c.name = r.getString("name", sel.kind == "nodes"
+                                     ? sel.name
+                                     : "fixed" + std::to_string(model.constraints.size()));
     addConstraint(r, std::move(c), selectNodes(mesh, sel, r), r.getString("components", "xyz"),
                   Eigen::Vector3d::Zero());
   }
@@ -463,9 +514,10 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
         // Total force spread uniformly over the selected area (eq. 25 with b = F/A).
         const auto elems = selectElements(mesh, sel, r);
         double area = 0;
-        for (int e : elems) area += mesh.area(e);
-        addTraction(mesh, elems, dir, [&](const Eigen::Vector2d&) { return value / area; },
-                    load.pattern);
+        for (int e : elems)
+          area += mesh.area(e);
+        addTraction(
+            mesh, elems, dir, [&](const Eigen::Vector2d&) { return value / area; }, load.pattern);
       } else if (target == "nodes") {
         const auto nodes = selectNodes(mesh, sel, r);
         for (int node : nodes)
@@ -476,32 +528,36 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
       }
     } else if (type == "pressure") {
       const double p = r.getDouble("value");
-      const auto elems = r.has("nodes") || r.has("box") || r.has("at") || r.has("region") ||
-                                 r.has("all")
-                             ? selectElements(mesh, readSelector(r), r)
-                             : selectElements(mesh, Selector{"all", "", {}, {}, "all"}, r);
-      addTraction(mesh, elems, Eigen::Vector3d::UnitZ(),
-                  [&](const Eigen::Vector2d&) { return p; }, load.pattern);
+      const auto elems =
+          r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all")
+              ? selectElements(mesh, readSelector(r), r)
+              : selectElements(mesh, Selector{"all", "", {}, {}, "all"}, r);
+      addTraction(
+          mesh, elems, Eigen::Vector3d::UnitZ(), [&](const Eigen::Vector2d&) { return p; },
+          load.pattern);
     } else if (type == "distributed") {
       // eq. (31): b = b0 cos^2(pi r / (2 L)) for r <= L, normal to the membrane,
       // r measured from the centre; b0 is a force per volume (N/m^3) as in the paper.
       const double b0 = r.getDouble("b0");
       const double L = r.getDouble("L", std::max(xmax - xmin, ymax - ymin));
-      if (!(L > 0)) r.fail("L", "must be > 0");
+      if (!(L > 0))
+        r.fail("L", "must be > 0");
       Eigen::Vector2d c(0.5 * (xmin + xmax), 0.5 * (ymin + ymax));
-      if (r.has("centre")) c = readPoint(r, "centre");
+      if (r.has("centre"))
+        c = readPoint(r, "centre");
       // times the thickness of each element's section (b is per volume)
       Eigen::VectorXd scaled = Eigen::VectorXd::Zero(ndof);
       for (int e = 0; e < mesh.numElements(); ++e) {
         const double h = model.sections[mesh.region_of[e]].thickness;
         std::vector<int> one{e};
-        addTraction(mesh, one, Eigen::Vector3d::UnitZ(),
-                    [&](const Eigen::Vector2d& p) {
-                      const double rr = (p - c).norm();
-                      const double cs = std::cos(kPi * rr / (2 * L));
-                      return rr <= L ? h * b0 * cs * cs : 0.0;
-                    },
-                    scaled);
+        addTraction(
+            mesh, one, Eigen::Vector3d::UnitZ(),
+            [&](const Eigen::Vector2d& p) {
+              const double rr = (p - c).norm();
+              const double cs = std::cos(kPi * rr / (2 * L));
+              return rr <= L ? h * b0 * cs * cs : 0.0;
+            },
+            scaled);
       }
       load.pattern = scaled;
     } else {
@@ -515,15 +571,18 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   // `mass` is the total, split equally over the selected nodes (one node for `at`).
   for (const auto& r : root.tableArray("point_mass")) {
     const double m = r.getDouble("mass");
-    if (!(m > 0)) r.fail("mass", "point mass must be > 0");
+    if (!(m > 0))
+      r.fail("mass", "point mass must be > 0");
     const auto nodes = selectNodes(mesh, readSelector(r), r);
-    for (int node : nodes) model.point_masses.emplace_back(node, m / double(nodes.size()));
+    for (int node : nodes)
+      model.point_masses.emplace_back(node, m / double(nodes.size()));
   }
 
   // Gravity: body force rho h g (consistent = lumped row sums) plus the point masses.
   if (auto g = root.optionalTable("gravity")) {
     const auto gv = g->getDoubleArray("g");
-    if (gv.size() != 3) g->fail("g", "expected [gx, gy, gz] (m/s^2)");
+    if (gv.size() != 3)
+      g->fail("g", "expected [gx, gy, gz] (m/s^2)");
     Load load;
     load.name = "gravity";
     load.pattern = Eigen::VectorXd::Zero(ndof);
@@ -531,10 +590,12 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
       const auto& s = model.sections[mesh.region_of[e]];
       const double m3 = s.density * s.thickness * mesh.area(e) / 3;
       for (int node : mesh.triangles[e])
-        for (int c = 0; c < 3; ++c) load.pattern[3 * node + c] += m3 * gv[c];
+        for (int c = 0; c < 3; ++c)
+          load.pattern[3 * node + c] += m3 * gv[c];
     }
     for (const auto& [node, m] : model.point_masses)
-      for (int c = 0; c < 3; ++c) load.pattern[3 * node + c] += m * gv[c];
+      for (int c = 0; c < 3; ++c)
+        load.pattern[3 * node + c] += m * gv[c];
     model.loads.push_back(std::move(load));
   }
 
@@ -547,16 +608,19 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     std::vector<double> area(n, 0.0);
     const auto elems = selectElements(mesh, sel, r);
     for (int e : elems)
-      for (int node : mesh.triangles[e]) area[node] += mesh.area(e) / 3;
+      for (int node : mesh.triangles[e])
+        area[node] += mesh.area(e) / 3;
     for (int i = 0; i < n; ++i)
       if (area[i] > 0) {
         d.nodes.push_back(i);
         d.area.push_back(area[i]);
       }
     d.cd = r.getDouble("cd");
-    if (!(d.cd > 0)) r.fail("cd", "drag coefficient must be > 0");
+    if (!(d.cd > 0))
+      r.fail("cd", "drag coefficient must be > 0");
     d.fluid_density = r.getDouble("fluid_density", 1.225);
-    if (!(d.fluid_density > 0)) r.fail("fluid_density", "must be > 0");
+    if (!(d.fluid_density > 0))
+      r.fail("fluid_density", "must be > 0");
     const std::string measure = r.getString("velocity", "normal");
     if (measure != "normal" && measure != "resultant")
       r.fail("velocity", "velocity must be \"normal\" or \"resultant\"");
@@ -570,10 +634,12 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   // Initial state: uniform initial velocity (optional).
   if (auto ini = root.optionalTable("initial")) {
     const auto v = ini->getDoubleArray("velocity");
-    if (v.size() != 3) ini->fail("velocity", "expected [vx, vy, vz]");
+    if (v.size() != 3)
+      ini->fail("velocity", "expected [vx, vy, vz]");
     model.v0 = Eigen::VectorXd::Zero(ndof);
     for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c) model.v0[3 * i + c] = v[c];
+      for (int c = 0; c < 3; ++c)
+        model.v0[3 * i + c] = v[c];
   }
 
   // Probes.
@@ -583,7 +649,8 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     p.name = r.getString("name");
     if (p.name.empty() || p.name.find_first_of(",\" ") != std::string::npos)
       r.fail("name", "probe name must be non-empty without commas, quotes or spaces");
-    if (!names.insert(p.name).second) r.fail("name", "duplicate probe '" + p.name + "'");
+    if (!names.insert(p.name).second)
+      r.fail("name", "duplicate probe '" + p.name + "'");
     p.node = mesh.nearestNode(readPoint(r, "at"));
     model.probes.push_back(p);
   }

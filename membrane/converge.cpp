@@ -23,7 +23,8 @@ double observedRate(const std::vector<double>& e) {
     sxx += double(k) * k;
     sxy += k * y;
   }
-  if (m == 1) return 0.0;
+  if (m == 1)
+    return 0.0;
   const double slope = (m * sxy - sx * sy) / (m * sxx - sx * sx);
   return -slope;
 }
@@ -60,13 +61,15 @@ ConvergenceStudy runConvergence(const std::filesystem::path& path,
     study.nx.push_back(nx0 * f);
     study.dt.push_back(dt0 / f);
     std::vector<int> at(nsample_nodes);
-    for (int i = 0; i < nsample_nodes; ++i) at[i] = model.mesh.nearestNode(coarse.mesh.nodes[i]);
+    for (int i = 0; i < nsample_nodes; ++i)
+      at[i] = model.mesh.nearestNode(coarse.mesh.nodes[i]);
     Simulation sim(model);
     core::ProgressLine progress("level " + std::to_string(k + 1) + "/" + std::to_string(levels),
                                 steps0 * f, quiet);
     for (long s = 1; s <= steps0 * f; ++s) {
       sim.step();
-      if (s % (static_cast<long>(f) * sample_every) != 0) continue;
+      if (s % (static_cast<long>(f) * sample_every) != 0)
+        continue;
       for (int i : at)
         for (int c = 0; c < 3; ++c) {
           su[k].push_back(sim.u()[3 * i + c]);
@@ -111,7 +114,8 @@ nlohmann::json ConvergenceStudy::toJson() const {
   j["dt"] = dt;
   auto arr = [](const std::vector<std::array<double, 3>>& d) {
     nlohmann::json a = nlohmann::json::array();
-    for (const auto& x : d) a.push_back({{"L1", x[0]}, {"L2", x[1]}, {"Linf", x[2]}});
+    for (const auto& x : d)
+      a.push_back({{"L1", x[0]}, {"L2", x[1]}, {"Linf", x[2]}});
     return a;
   };
   j["displacement_differences"] = arr(du);
@@ -129,9 +133,11 @@ std::string ConvergenceStudy::toTable() const {
   for (size_t k = 0; k < nx.size(); ++k) {
     os << k << "      " << nx[k] << "\t" << core::formatShort(dt[k], 4);
     if (k > 0) {
-      for (double x : du[k - 1]) os << "\t" << core::formatShort(x, 4);
+      for (double x : du[k - 1])
+        os << "\t" << core::formatShort(x, 4);
       os << "\t";
-      for (double x : dv[k - 1]) os << "\t" << core::formatShort(x, 4);
+      for (double x : dv[k - 1])
+        os << "\t" << core::formatShort(x, 4);
     }
     os << "\n";
   }

@@ -23,13 +23,13 @@ namespace lamina::membrane {
 
 /// Result of a convergence study.
 struct ConvergenceStudy {
-  std::vector<int> nx;                      ///< squares along x per level
-  std::vector<double> dt;                   ///< time step per level
-  std::vector<std::array<double, 3>> du;    ///< displacement differences (L1, L2, Linf), levels 1..K-1
-  std::vector<std::array<double, 3>> dv;    ///< velocity differences
-  std::array<double, 3> rate_u{};           ///< observed displacement rates (L1, L2, Linf)
-  std::array<double, 3> rate_v{};           ///< observed velocity rates
-  double wall_s = 0;                        ///< total time (s)
+  std::vector<int> nx;                   ///< squares along x per level
+  std::vector<double> dt;                ///< time step per level
+  std::vector<std::array<double, 3>> du; ///< displacement differences (L1, L2, Linf), levels 1..K-1
+  std::vector<std::array<double, 3>> dv; ///< velocity differences
+  std::array<double, 3> rate_u{};        ///< observed displacement rates (L1, L2, Linf)
+  std::array<double, 3> rate_v{};        ///< observed velocity rates
+  double wall_s = 0;                     ///< total time (s)
   /// @return the study as JSON
   nlohmann::json toJson() const;
   /// @return the study as a text table like the paper's Table 3

@@ -7,7 +7,6 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
-#include <unistd.h>
 
 int main(int argc, char** argv) {
   using namespace lamina;
@@ -40,24 +39,26 @@ int main(int argc, char** argv) {
   }
   try {
     membrane::MaterialSources sources{library, ""};
-    const bool quiet = json || !isatty(STDERR_FILENO) ? json : false;
+    const bool quiet = json; // ProgressLine itself logs sparsely when stderr is not a tty
     if (run->parsed()) {
       const auto model = membrane::readCase(case_path, overrides, sources);
       membrane::RunOptions opt;
       opt.out_dir = out_dir;
       opt.quiet = quiet;
       const auto summary = membrane::runCase(model, opt);
-      if (json) std::cout << summary.dump(2) << "\n";
+      if (json)
+        std::cout << summary.dump(2) << "\n";
       else
         std::cerr << "membrane: " << model.name << ": " << summary["steps"] << " steps, max |w| "
                   << summary["max_abs_w"] << " m, energy balance "
-                  << summary["energy"]["max_abs_balance"] << " J; results in " << out_dir
-                  << "\n";
+                  << summary["energy"]["max_abs_balance"] << " J; results in " << out_dir << "\n";
     } else {
       const auto study =
           membrane::runConvergence(case_path, overrides, sources, levels, sample_every, quiet);
-      if (json) std::cout << study.toJson().dump(2) << "\n";
-      else std::cout << study.toTable();
+      if (json)
+        std::cout << study.toJson().dump(2) << "\n";
+      else
+        std::cout << study.toTable();
     }
   } catch (const DivergenceError& e) {
     std::cerr << "membrane: diverged: " << e.what() << "\n";

@@ -37,10 +37,9 @@ int Mesh::nearestNode(const Eigen::Vector2d& p) const {
 }
 
 std::array<double, 4> Mesh::bounds() const {
-  std::array<double, 4> b{std::numeric_limits<double>::infinity(),
-                          -std::numeric_limits<double>::infinity(),
-                          std::numeric_limits<double>::infinity(),
-                          -std::numeric_limits<double>::infinity()};
+  std::array<double, 4> b{
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+      std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   for (const auto& p : nodes) {
     b[0] = std::min(b[0], p.x());
     b[1] = std::max(b[1], p.x());
@@ -53,7 +52,8 @@ std::array<double, 4> Mesh::bounds() const {
 double Mesh::maxEdge() const {
   double h = 0;
   for (const auto& t : triangles)
-    for (int k = 0; k < 3; ++k) h = std::max(h, (nodes[t[k]] - nodes[t[(k + 1) % 3]]).norm());
+    for (int k = 0; k < 3; ++k)
+      h = std::max(h, (nodes[t[k]] - nodes[t[(k + 1) % 3]]).norm());
   return h;
 }
 
@@ -69,7 +69,8 @@ void finalizeMesh(Mesh& mesh) {
                    " refers to a missing node");
     LAMINA_CHECK(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], mesh.source, ": triangle ", e,
                  " repeats a node");
-    if (mesh.area(e) < 0) std::swap(t[1], t[2]);
+    if (mesh.area(e) < 0)
+      std::swap(t[1], t[2]);
     // Degenerate: area tiny compared with the square of its longest edge.
     double l2 = 0;
     for (int k = 0; k < 3; ++k)
@@ -91,7 +92,8 @@ Mesh structuredRectangle(double Lx, double Ly, int nx, int ny) {
   const int nxp = nx + 1;
   m.nodes.reserve(static_cast<size_t>(nxp) * (ny + 1));
   for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) m.nodes.emplace_back(Lx * i / nx, Ly * j / ny);
+    for (int i = 0; i <= nx; ++i)
+      m.nodes.emplace_back(Lx * i / nx, Ly * j / ny);
   auto id = [nxp](int i, int j) { return j * nxp + i; };
   m.triangles.reserve(2 * static_cast<size_t>(nx) * ny);
   for (int j = 0; j < ny; ++j)
@@ -115,7 +117,8 @@ Mesh structuredRectangle(double Lx, double Ly, int nx, int ny) {
     top.push_back(id(i, ny));
   }
   auto& edges = m.node_sets["edges"];
-  for (const auto* s : {&left, &right, &bottom, &top}) edges.insert(edges.end(), s->begin(), s->end());
+  for (const auto* s : {&left, &right, &bottom, &top})
+    edges.insert(edges.end(), s->begin(), s->end());
   finalizeMesh(m);
   return m;
 }
@@ -148,7 +151,8 @@ Mesh readGmsh(const std::filesystem::path& path) {
   m.source = file;
   try {
     gmsh::open(file);
-    if (ext == ".geo") gmsh::model::mesh::generate(2);
+    if (ext == ".geo")
+      gmsh::model::mesh::generate(2);
 
     std::vector<std::size_t> tags;
     std::vector<double> coord, param;
@@ -156,7 +160,8 @@ Mesh readGmsh(const std::filesystem::path& path) {
     std::unordered_map<std::size_t, int> index;
     index.reserve(tags.size());
     for (std::size_t k = 0; k < tags.size(); ++k) {
-      if (index.count(tags[k])) continue;
+      if (index.count(tags[k]))
+        continue;
       index[tags[k]] = static_cast<int>(m.nodes.size());
       m.nodes.emplace_back(coord[3 * k], coord[3 * k + 1]);
       if (std::abs(coord[3 * k + 2]) > 1e-12 * (1 + std::abs(coord[3 * k])))
@@ -173,12 +178,14 @@ Mesh readGmsh(const std::filesystem::path& path) {
     for (const auto& [dim, tag] : groups) {
       std::string name;
       gmsh::model::getPhysicalName(dim, tag, name);
-      if (name.empty()) name = std::to_string(tag);
+      if (name.empty())
+        name = std::to_string(tag);
       std::vector<int> ents;
       gmsh::model::getEntitiesForPhysicalGroup(dim, tag, ents);
       const int r = static_cast<int>(m.regions.size());
       m.regions.push_back(name);
-      for (int ent : ents) region_of_entity[ent] = r;
+      for (int ent : ents)
+        region_of_entity[ent] = r;
     }
     int all_region = -1;
     for (const auto& [dim, ent] : surfaces) {
@@ -190,7 +197,8 @@ Mesh readGmsh(const std::filesystem::path& path) {
       if (it != region_of_entity.end()) {
         region = it->second;
       } else {
-        if (!groups.empty()) continue; // gmsh only saves physical elements; mirror that
+        if (!groups.empty())
+          continue; // gmsh only saves physical elements; mirror that
         if (all_region < 0) {
           all_region = static_cast<int>(m.regions.size());
           m.regions.push_back("all");
@@ -198,10 +206,11 @@ Mesh readGmsh(const std::filesystem::path& path) {
         region = all_region;
       }
       for (std::size_t t = 0; t < types.size(); ++t) {
-        if (types[t] != 2) continue; // 3-node triangle
+        if (types[t] != 2)
+          continue; // 3-node triangle
         for (std::size_t k = 0; k + 2 < enodes[t].size(); k += 3) {
-          m.triangles.push_back({index.at(enodes[t][k]), index.at(enodes[t][k + 1]),
-                                 index.at(enodes[t][k + 2])});
+          m.triangles.push_back(
+              {index.at(enodes[t][k]), index.at(enodes[t][k + 1]), index.at(enodes[t][k + 2])});
           m.region_of.push_back(region);
         }
       }
@@ -214,12 +223,14 @@ Mesh readGmsh(const std::filesystem::path& path) {
       for (const auto& [d, tag] : g) {
         std::string name;
         gmsh::model::getPhysicalName(d, tag, name);
-        if (name.empty()) name = std::to_string(tag);
+        if (name.empty())
+          name = std::to_string(tag);
         std::vector<std::size_t> ntags;
         std::vector<double> c;
         gmsh::model::mesh::getNodesForPhysicalGroup(d, tag, ntags, c);
         auto& set = m.node_sets[name];
-        for (auto nt : ntags) set.push_back(index.at(nt));
+        for (auto nt : ntags)
+          set.push_back(index.at(nt));
       }
     }
   } catch (const Error&) {
@@ -246,7 +257,8 @@ Mesh readGmsh(const std::filesystem::path& path) {
   for (auto& [name, set] : m.node_sets) {
     std::vector<int> kept;
     for (int i : set)
-      if (renum[i] >= 0) kept.push_back(renum[i]);
+      if (renum[i] >= 0)
+        kept.push_back(renum[i]);
     set = std::move(kept);
   }
   finalizeMesh(m);

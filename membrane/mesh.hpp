@@ -20,12 +20,12 @@ namespace lamina::membrane {
 
 /// A linear-triangle mesh of the undeformed membrane (z = 0).
 struct Mesh {
-  std::vector<Eigen::Vector2d> nodes;           ///< initial coordinates (x0, y0), m
-  std::vector<std::array<int, 3>> triangles;     ///< node indices, counter-clockwise
-  std::vector<int> region_of;                    ///< region index of each triangle
-  std::vector<std::string> regions;              ///< region names ("all" for the rectangle)
+  std::vector<Eigen::Vector2d> nodes;                ///< initial coordinates (x0, y0), m
+  std::vector<std::array<int, 3>> triangles;         ///< node indices, counter-clockwise
+  std::vector<int> region_of;                        ///< region index of each triangle
+  std::vector<std::string> regions;                  ///< region names ("all" for the rectangle)
   std::map<std::string, std::vector<int>> node_sets; ///< named boundary node sets (sorted)
-  std::string source;                            ///< file name or "structured"
+  std::string source;                                ///< file name or "structured"
 
   /// @return the number of nodes
   int numNodes() const { return static_cast<int>(nodes.size()); }

@@ -21,18 +21,18 @@ namespace lamina::membrane {
 
 /// A load F(t) = profile(t) * pattern.
 struct Load {
-  std::string name;       ///< for messages and the summary
+  std::string name;        ///< for messages and the summary
   Eigen::VectorXd pattern; ///< nodal forces at profile value 1 (N)
-  TimeProfile profile;    ///< time factor
+  TimeProfile profile;     ///< time factor
 };
 
 /// A set of constrained DOFs moving with prescribed velocity
 /// v_dof(t) = amplitude_dof * profile(t) (zero amplitude = fixed).
 struct Constraint {
-  std::string name;               ///< boundary set name (reactions are summed per set)
-  std::vector<int> dofs;          ///< constrained DOFs
-  std::vector<double> amplitude;  ///< velocity amplitude per DOF (m/s)
-  TimeProfile profile;            ///< time factor of the velocity
+  std::string name;              ///< boundary set name (reactions are summed per set)
+  std::vector<int> dofs;         ///< constrained DOFs
+  std::vector<double> amplitude; ///< velocity amplitude per DOF (m/s)
+  TimeProfile profile;           ///< time factor of the velocity
 };
 
 /// Aerodynamic drag on the nodes of a surface region (drag paper eqs. 1-3):
@@ -53,12 +53,12 @@ struct Probe {
 
 /// Time integration and solver settings.
 struct TimeSettings {
-  double dt = 0;          ///< tau, s
-  double t_end = 0;       ///< s
-  double beta1 = 0.5;     ///< Newmark beta1 (eq. 30; gamma in other texts)
-  double beta2 = 0.5;     ///< Newmark beta2 (eq. 30; 2 beta in other texts)
-  double hht_alpha = 0;   ///< HHT-alpha in [-1/3, 0]; 0 = the paper's scheme
-  bool lumped = false;    ///< lumped (row-sum) instead of consistent mass
+  double dt = 0;             ///< tau, s
+  double t_end = 0;          ///< s
+  double beta1 = 0.5;        ///< Newmark beta1 (eq. 30; gamma in other texts)
+  double beta2 = 0.5;        ///< Newmark beta2 (eq. 30; 2 beta in other texts)
+  double hht_alpha = 0;      ///< HHT-alpha in [-1/3, 0]; 0 = the paper's scheme
+  bool lumped = false;       ///< lumped (row-sum) instead of consistent mass
   std::string solver = "cg"; ///< "cg" (block-Jacobi PCG, warm started) or "cholesky"
   double tolerance = 1e-10;  ///< relative residual of the CG solve (1e-10: answers equal the
                              ///< factorized solve to ~4e-11, bench/membrane)
@@ -71,24 +71,24 @@ struct TimeSettings {
 
 /// Output settings.
 struct OutputSettings {
-  int field_every = 10;  ///< write fields every this many steps (0 = first and last only)
-  int energy_every = 1;  ///< compute kinetic/strain energy every this many steps
-  bool fields = true;    ///< write the XDMF/HDF5 series at all
+  int field_every = 10; ///< write fields every this many steps (0 = first and last only)
+  int energy_every = 1; ///< compute kinetic/strain energy every this many steps
+  bool fields = true;   ///< write the XDMF/HDF5 series at all
 };
 
 /// Everything a run needs.
 struct Model {
-  std::string name;                 ///< case name (file stem)
-  Mesh mesh;                        ///< the mesh
-  std::vector<Section> sections;    ///< one per mesh region
-  std::vector<Constraint> constraints; ///< fixed and moving DOF sets
-  std::vector<Load> loads;          ///< external loads (incl. gravity)
-  std::vector<Drag> drags;          ///< drag regions
+  std::string name;                                 ///< case name (file stem)
+  Mesh mesh;                                        ///< the mesh
+  std::vector<Section> sections;                    ///< one per mesh region
+  std::vector<Constraint> constraints;              ///< fixed and moving DOF sets
+  std::vector<Load> loads;                          ///< external loads (incl. gravity)
+  std::vector<Drag> drags;                          ///< drag regions
   std::vector<std::pair<int, double>> point_masses; ///< (node, kg)
-  std::vector<Probe> probes;        ///< probes
-  TimeSettings time;                ///< time stepping
-  OutputSettings output;            ///< outputs
-  Eigen::VectorXd u0, v0;           ///< initial displacement and velocity (empty = zero)
+  std::vector<Probe> probes;                        ///< probes
+  TimeSettings time;                                ///< time stepping
+  OutputSettings output;                            ///< outputs
+  Eigen::VectorXd u0, v0;            ///< initial displacement and velocity (empty = zero)
   bool compare_without_drag = false; ///< run also without the drag and compare peaks
   int numDofs() const { return 3 * mesh.numNodes(); }
 };

@@ -23,7 +23,8 @@ FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& st
   }
   std::vector<std::int32_t> tri(3 * ne), region(ne);
   for (std::uint64_t e = 0; e < ne; ++e) {
-    for (int k = 0; k < 3; ++k) tri[3 * e + k] = mesh.triangles[e][k];
+    for (int k = 0; k < 3; ++k)
+      tri[3 * e + k] = mesh.triangles[e][k];
     region[e] = mesh.region_of[e];
   }
   file_->createGroup("/mesh");
@@ -43,13 +44,15 @@ void FieldWriter::write(double t, const Eigen::VectorXd& u, const Eigen::VectorX
   file_->writeDoubles(g + "/displacement", u.data(), {n, 3});
   file_->writeDoubles(g + "/velocity", v.data(), {n, 3});
   std::vector<double> speed(n);
-  for (std::uint64_t i = 0; i < n; ++i) speed[i] = v.segment<3>(3 * i).norm();
+  for (std::uint64_t i = 0; i < n; ++i)
+    speed[i] = v.segment<3>(3 * i).norm();
   file_->writeDoubles(g + "/speed", speed.data(), {n});
   std::vector<double> strain(6 * ne), stress(6 * ne);
   for (std::uint64_t e = 0; e < ne; ++e) {
     const auto& tri = mesh_.triangles[e];
     Eigen::Matrix<double, 9, 1> ae;
-    for (int k = 0; k < 3; ++k) ae.segment<3>(3 * k) = u.segment<3>(3 * tri[k]);
+    for (int k = 0; k < 3; ++k)
+      ae.segment<3>(3 * k) = u.segment<3>(3 * tri[k]);
     const Eigen::Matrix<double, 6, 1> eps = strainMatrix(mesh_, static_cast<int>(e)) * ae;
     const Eigen::Matrix<double, 6, 1> sig = sections_[mesh_.region_of[e]].D * eps; // eq. (15)
     for (int k = 0; k < 6; ++k) {
@@ -76,7 +79,8 @@ void FieldWriter::writeIndex() const {
                   int rows, int cols, const std::string& path) {
     x << "    <Attribute Name=\"" << name << "\" AttributeType=\"" << type << "\" Center=\""
       << center << "\">\n      <DataItem Dimensions=\"" << rows;
-    if (cols > 1) x << " " << cols;
+    if (cols > 1)
+      x << " " << cols;
     x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":" << path
       << "</DataItem>\n    </Attribute>\n";
   };
@@ -104,13 +108,15 @@ void FieldWriter::writeIndex() const {
 
 CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& header)
     : path_(path), out_(path.string() + ".part") {
-  if (!out_) throw Error("cannot write", ErrorContext{path.string() + ".part", 0, ""});
+  if (!out_)
+    throw Error("cannot write", ErrorContext{path.string() + ".part", 0, ""});
   out_ << header << '\n';
 }
 
 void CsvWriter::row(const std::vector<double>& values) {
   for (size_t k = 0; k < values.size(); ++k) {
-    if (k) out_ << ',';
+    if (k)
+      out_ << ',';
     out_ << core::formatExact(values[k]);
   }
   out_ << '\n';
@@ -118,7 +124,8 @@ void CsvWriter::row(const std::vector<double>& values) {
 }
 
 void CsvWriter::close() {
-  if (closed_) return;
+  if (closed_)
+    return;
   out_.close();
   core::renameIntoPlace(path_.string() + ".part", path_);
   closed_ = true;

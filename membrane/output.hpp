@@ -9,9 +9,9 @@
 /// written so far. CSV files are written to "<name>.part" and renamed into
 /// place by close().
 
+#include "core/hdf5_file.hpp"
 #include "membrane/assembly.hpp"
 #include "membrane/mesh.hpp"
-#include "core/hdf5_file.hpp"
 
 #include <Eigen/Dense>
 

@@ -8,42 +8,52 @@ namespace lamina::membrane {
 TimeProfile TimeProfile::read(const core::TableReader& r) {
   TimeProfile p;
   p.kind_ = r.getString("profile", "constant");
-  if (p.kind_ == "constant") return p;
+  if (p.kind_ == "constant")
+    return p;
   if (p.kind_ == "step") {
     p.t0_ = r.getDouble("t0", 0.0);
   } else if (p.kind_ == "ramp") {
     p.t0_ = r.getDouble("t0", 0.0);
     p.rise_ = r.getDouble("rise");
-    if (!(p.rise_ > 0)) r.fail("rise", "ramp rise time must be > 0");
+    if (!(p.rise_ > 0))
+      r.fail("rise", "ramp rise time must be > 0");
   } else if (p.kind_ == "pulse") {
     p.t0_ = r.getDouble("t0", 0.0);
     p.duration_ = r.getDouble("duration");
-    if (!(p.duration_ > 0)) r.fail("duration", "pulse duration must be > 0");
+    if (!(p.duration_ > 0))
+      r.fail("duration", "pulse duration must be > 0");
   } else if (p.kind_ == "table") {
     const auto m = r.getMatrix("table");
-    if (m.empty()) r.fail("table", "table profile needs at least one [t, f] row");
+    if (m.empty())
+      r.fail("table", "table profile needs at least one [t, f] row");
     for (const auto& row : m) {
-      if (row.size() != 2) r.fail("table", "each table row must be [t, f]");
+      if (row.size() != 2)
+        r.fail("table", "each table row must be [t, f]");
       if (!p.tt_.empty() && !(row[0] > p.tt_.back()))
         r.fail("table", "table times must increase strictly");
       p.tt_.push_back(row[0]);
       p.ff_.push_back(row[1]);
     }
   } else {
-    r.fail("profile", "unknown profile '" + p.kind_ +
-                          "' (constant, step, ramp, pulse, table)");
+    r.fail("profile", "unknown profile '" + p.kind_ + "' (constant, step, ramp, pulse, table)");
   }
   return p;
 }
 
 double TimeProfile::operator()(double t) const {
-  if (kind_ == "constant") return 1.0;
-  if (kind_ == "step") return t >= t0_ ? 1.0 : 0.0;
-  if (kind_ == "ramp") return std::clamp((t - t0_) / rise_, 0.0, 1.0);
-  if (kind_ == "pulse") return (t >= t0_ && t < t0_ + duration_) ? 1.0 : 0.0;
+  if (kind_ == "constant")
+    return 1.0;
+  if (kind_ == "step")
+    return t >= t0_ ? 1.0 : 0.0;
+  if (kind_ == "ramp")
+    return std::clamp((t - t0_) / rise_, 0.0, 1.0);
+  if (kind_ == "pulse")
+    return (t >= t0_ && t < t0_ + duration_) ? 1.0 : 0.0;
   // table
-  if (t <= tt_.front()) return ff_.front();
-  if (t >= tt_.back()) return ff_.back();
+  if (t <= tt_.front())
+    return ff_.front();
+  if (t >= tt_.back())
+    return ff_.back();
   const auto k = static_cast<size_t>(std::upper_bound(tt_.begin(), tt_.end(), t) - tt_.begin());
   const double s = (t - tt_[k - 1]) / (tt_[k] - tt_[k - 1]);
   return ff_[k - 1] + s * (ff_[k] - ff_[k - 1]);

@@ -43,26 +43,31 @@ public:
       progress.update(s, "t = " + core::formatShort(sim.time(), 4));
     }
     step_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
-    if (failure && fields_) fields_->write(sim.time(), sim.u(), sim.v()); // last finite state
-    if (failure) record(sim, false, false);
+    if (failure && fields_)
+      fields_->write(sim.time(), sim.u(), sim.v()); // last finite state
+    if (failure)
+      record(sim, false, false);
     progress.finish();
     closeOutputs();
     wall_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json summary = summarize(sim);
-    if (failure) summary["diverged"] = failure->message();
+    if (failure)
+      summary["diverged"] = failure->message();
     core::writeFileAtomically(opt_.out_dir / "summary.json", summary.dump(2) + "\n");
-    if (failure) throw *failure;
+    if (failure)
+      throw *failure;
     return summary;
   }
 
 private:
   void openOutputs(const Simulation&) {
     if (model_.output.fields)
-      fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh,
-                                              model_.sections);
+      fields_ =
+          std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh, model_.sections);
     std::string h = "t";
     for (const auto& p : model_.probes)
-      for (const char* c : {"_ux", "_uy", "_uz", "_vx", "_vy", "_vz"}) h += "," + p.name + c;
+      for (const char* c : {"_ux", "_uy", "_uz", "_vx", "_vy", "_vz"})
+        h += "," + p.name + c;
     probes_ = std::make_unique<CsvWriter>(opt_.out_dir / "probes.csv", h);
     energy_ = std::make_unique<CsvWriter>(
         opt_.out_dir / "energy.csv",
@@ -70,7 +75,8 @@ private:
     if (!model_.constraints.empty()) {
       std::string r = "t";
       for (const auto& c : model_.constraints)
-        for (const char* k : {"_Rx", "_Ry", "_Rz"}) r += "," + c.name + k;
+        for (const char* k : {"_Rx", "_Ry", "_Rz"})
+          r += "," + c.name + k;
       reactions_ = std::make_unique<CsvWriter>(opt_.out_dir / "reactions.csv", r);
     }
     peak_reaction_.assign(model_.constraints.size(), 0.0);
@@ -88,8 +94,10 @@ private:
     std::vector<double> row{sim.time()};
     for (size_t k = 0; k < model_.probes.size(); ++k) {
       const int i = model_.probes[k].node;
-      for (int c = 0; c < 3; ++c) row.push_back(u[3 * i + c]);
-      for (int c = 0; c < 3; ++c) row.push_back(v[3 * i + c]);
+      for (int c = 0; c < 3; ++c)
+        row.push_back(u[3 * i + c]);
+      for (int c = 0; c < 3; ++c)
+        row.push_back(v[3 * i + c]);
       probe_peak_[k] = std::max(probe_peak_[k], std::abs(u[3 * i + 2]));
     }
     probes_->row(row);
@@ -97,7 +105,8 @@ private:
       const auto sums = sim.reactionSums();
       std::vector<double> r{sim.time()};
       for (size_t k = 0; k < sums.size(); ++k) {
-        for (int c = 0; c < 3; ++c) r.push_back(sums[k][c]);
+        for (int c = 0; c < 3; ++c)
+          r.push_back(sums[k][c]);
         peak_reaction_[k] = std::max(peak_reaction_[k], sums[k].norm());
       }
       reactions_->row(r);
@@ -125,16 +134,18 @@ private:
       max_balance_ = std::max(max_balance_, std::abs(e.balance));
       energy_scale_ = std::max({energy_scale_, total, std::abs(e.external_work),
                                 std::abs(e.reaction_work), std::abs(e.drag_work)});
-      energy_->row({sim.time(), e.kinetic, e.strain, e.external_work, e.reaction_work,
-                    e.drag_work, total, e.balance});
+      energy_->row({sim.time(), e.kinetic, e.strain, e.external_work, e.reaction_work, e.drag_work,
+                    total, e.balance});
     }
-    if (fields && fields_) fields_->write(sim.time(), u, v);
+    if (fields && fields_)
+      fields_->write(sim.time(), u, v);
   }
 
   void closeOutputs() {
     probes_->close();
     energy_->close();
-    if (reactions_) reactions_->close();
+    if (reactions_)
+      reactions_->close();
   }
 
   nlohmann::json summarize(const Simulation& sim) const {
@@ -178,9 +189,9 @@ private:
     s["reactions"] = reac;
     s["solver"] = {{"type", model_.time.solver},
                    {"mean_iterations",
-                    sim.solver().solves() ? double(sim.solver().totalIterations()) /
-                                                double(sim.solver().solves())
-                                          : 0.0}};
+                    sim.solver().solves()
+                        ? double(sim.solver().totalIterations()) / double(sim.solver().solves())
+                        : 0.0}};
     s["wall_s"] = wall_s_;
     s["assembly_s"] = sim.assemblySeconds();
     s["factor_s"] = sim.setupSeconds();
@@ -205,10 +216,12 @@ nlohmann::json runModel(const Model& model, const RunOptions& options) {
 }
 
 nlohmann::json runCase(const Model& model, const RunOptions& options) {
-  if (!model.compare_without_drag) return runModel(model, options);
+  if (!model.compare_without_drag)
+    return runModel(model, options);
   auto peaks = [](const nlohmann::json& s) {
     double reaction = 0;
-    for (const auto& [name, r] : s["reactions"].items()) reaction = std::max(reaction, r["peak"].get<double>());
+    for (const auto& [name, r] : s["reactions"].items())
+      reaction = std::max(reaction, r["peak"].get<double>());
     return nlohmann::json{{"max_abs_w", s["max_abs_w"]},
                           {"max_speed", s["max_speed"]},
                           {"peak_reaction", reaction},

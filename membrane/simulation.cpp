@@ -36,7 +36,8 @@ Simulation::Simulation(const Model& model) : model_(model) {
   K_ = std::move(g.K);
   M_ = std::move(g.M);
   for (const auto& [node, m] : model.point_masses)
-    for (int c = 0; c < 3; ++c) M_.coeffRef(3 * node + c, 3 * node + c) += m;
+    for (int c = 0; c < 3; ++c)
+      M_.coeffRef(3 * node + c, 3 * node + c) += m;
   assembly_s_ = seconds(t0);
 
   t0 = std::chrono::steady_clock::now();
@@ -48,7 +49,8 @@ Simulation::Simulation(const Model& model) : model_(model) {
     const Eigen::Index nnz = A_.nonZeros();
     double* av = A_.valuePtr();
     const double* kv = K_.valuePtr();
-    for (Eigen::Index k = 0; k < nnz; ++k) av[k] += ck * kv[k];
+    for (Eigen::Index k = 0; k < nnz; ++k)
+      av[k] += ck * kv[k];
   }
   std::vector<char> constrained(ndof, 0);
   for (size_t s = 0; s < model.constraints.size(); ++s) {
@@ -80,8 +82,8 @@ Simulation::Simulation(const Model& model) : model_(model) {
   Kb_ = BlockMatrix(K_);
   Kc_ = extractRows(K_, cdofs_);
   Mc_ = extractRows(M_, cdofs_);
-  solver_ = std::make_unique<StepSolver>(A_, ts.solver, ts.tolerance, ts.max_iterations,
-                                         ts.projection);
+  solver_ =
+      std::make_unique<StepSolver>(A_, ts.solver, ts.tolerance, ts.max_iterations, ts.projection);
   setup_s_ = seconds(t0);
 
   has_loads_ = !model.loads.empty();
@@ -95,18 +97,21 @@ Simulation::Simulation(const Model& model) : model_(model) {
   f_ = Eigen::VectorXd::Zero(ndof);
   fd_ = Eigen::VectorXd::Zero(ndof);
   externalForce(0.0, f_);
-  if (has_drag_) dragForce(v_, fd_);
+  if (has_drag_)
+    dragForce(v_, fd_);
   // Consistent initial acceleration: M a_0 = F_0 + Fd_0 - K u_0 on the free
   // DOFs, a_0 = 0 on the constrained ones.
   a_ = Eigen::VectorXd::Zero(ndof);
   multiply(K_, u_, ku_);
   b_ = f_ + fd_ - ku_;
-  for (int d : cdofs_) b_[d] = 0;
+  for (int d : cdofs_)
+    b_[d] = 0;
   if (b_.norm() > 0) {
     SparseMatrix Mf = M_;
     for (int i = 0; i < ndof; ++i)
       for (SparseMatrix::InnerIterator it(Mf, i); it; ++it)
-        if (constrained[i] || constrained[it.col()]) it.valueRef() = (i == it.col()) ? 1.0 : 0.0;
+        if (constrained[i] || constrained[it.col()])
+          it.valueRef() = (i == it.col()) ? 1.0 : 0.0;
     StepSolver ms(Mf, ts.solver, std::min(ts.tolerance, 1e-13), ts.max_iterations);
     ms.solve(b_, a_);
   }
@@ -126,7 +131,8 @@ void Simulation::externalForce(double t, Eigen::VectorXd& f) const {
   f.setZero(model_.numDofs());
   for (const auto& l : model_.loads) {
     const double s = l.profile(t);
-    if (s != 0) f += s * l.pattern;
+    if (s != 0)
+      f += s * l.pattern;
   }
 }
 
@@ -141,7 +147,10 @@ void Simulation::dragForce(const Eigen::VectorXd& v, Eigen::VectorXd& f) const {
       const double speed = d.resultant ? v.segment<3>(3 * i).norm() : std::abs(vn);
       // 'normal': V = |v_n|, F = -q V v_n; 'resultant': V = |v|, direction by sign(v_n).
       const double q = 0.5 * d.fluid_density * d.cd * d.area[k];
-      f[3 * i + 2] -= d.resultant ? q * speed * speed * (vn > 0 ? 1.0 : vn < 0 ? -1.0 : 0.0)
+      f[3 * i + 2] -= d.resultant ? q * speed * speed *
+                                        (vn > 0   ? 1.0
+                                         : vn < 0 ? -1.0
+                                                  : 0.0)
                                   : q * speed * vn;
     }
 }
@@ -149,9 +158,11 @@ void Simulation::dragForce(const Eigen::VectorXd& v, Eigen::VectorXd& f) const {
 void Simulation::reactions(double t, Eigen::VectorXd& r) const {
   // R = M a + K u - F - F_drag at the constrained DOFs.
   (void)t;
-  if (cdofs_.empty()) return;
+  if (cdofs_.empty())
+    return;
   r = Mc_ * a_ + Kc_ * u_;
-  for (size_t k = 0; k < cdofs_.size(); ++k) r[k] -= f_[cdofs_[k]] + fd_[cdofs_[k]];
+  for (size_t k = 0; k < cdofs_.size(); ++k)
+    r[k] -= f_[cdofs_[k]] + fd_[cdofs_[k]];
 }
 
 void Simulation::step() {
@@ -163,7 +174,8 @@ void Simulation::step() {
   // Predictors of eq. (30).
   ut_ = u_ + tau * v_ + (0.5 * tau * tau * (1 - ts.beta2)) * a_;
   vt_ = v_ + (tau * (1 - ts.beta1)) * a_;
-  if (has_loads_) externalForce(t1, f1_);
+  if (has_loads_)
+    externalForce(t1, f1_);
   Kb_.multiply(ut_, ku_);
   // Right-hand side without drag: (1+alpha)(F1 - K u~) - alpha (F_n + Fd_n - K u_n).
   b_ = (1 + alpha) * (f1_ - ku_);
@@ -177,9 +189,11 @@ void Simulation::step() {
     const int d = cdofs_[k];
     const double vp = camp_[k] * model_.constraints[cset_[k]].profile(t1);
     ac_[d] = (vp - vt_[d]) / (ts.beta1 * tau);
-    if (ac_[d] != 0) moving_acc = true;
+    if (ac_[d] != 0)
+      moving_acc = true;
   }
-  if (moving_acc) b_ -= Afc_ * ac_;
+  if (moving_acc)
+    b_ -= Afc_ * ac_;
 
   // Warm start: linear extrapolation of the acceleration history.
   a1_ = 2 * a_ - a_prev_;
@@ -192,9 +206,11 @@ void Simulation::step() {
       dragForce(v1_, fd1_);
       tmp_ += (1 + alpha) * fd1_;
     }
-    for (int d : cdofs_) tmp_[d] = ac_[d];
+    for (int d : cdofs_)
+      tmp_[d] = ac_[d];
     Eigen::VectorXd previous;
-    if (has_drag_) previous = a1_;
+    if (has_drag_)
+      previous = a1_;
     try {
       last_iterations_ += solver_->solve(tmp_, a1_);
     } catch (const DivergenceError& e) {
@@ -210,12 +226,14 @@ void Simulation::step() {
       }
       const auto& p = model_.mesh.nodes[worst];
       std::ostringstream os;
-      os << e.message() << " at t = " << t1 << " s (step " << n_ + 1
-         << "), largest motion at node " << worst << " (" << p.x() << ", " << p.y() << ")";
+      os << e.message() << " at t = " << t1 << " s (step " << n_ + 1 << "), largest motion at node "
+         << worst << " (" << p.x() << ", " << p.y() << ")";
       throw DivergenceError(os.str());
     }
-    if (!has_drag_) break;
-    if ((a1_ - previous).norm() <= ts.drag_tolerance * (a1_.norm() + 1e-300)) break;
+    if (!has_drag_)
+      break;
+    if ((a1_ - previous).norm() <= ts.drag_tolerance * (a1_.norm() + 1e-300))
+      break;
   }
   if (has_drag_) {
     // Drag consistent with the final a_{n+1}, as used in the balance below.
@@ -235,15 +253,17 @@ void Simulation::step() {
       }
     const auto& p = model_.mesh.nodes[bad];
     std::ostringstream os;
-    os << "non-finite state at t = " << t1 << " s (step " << n_ + 1 << "), node " << bad
-       << " at (" << p.x() << ", " << p.y() << ")";
+    os << "non-finite state at t = " << t1 << " s (step " << n_ + 1 << "), node " << bad << " at ("
+       << p.x() << ", " << p.y() << ")";
     throw DivergenceError(os.str());
   }
 
   // Works by the trapezoidal rule over the step.
   const Eigen::VectorXd du = u1_ - u_;
-  if (has_loads_) w_ext_ += 0.5 * du.dot(f_ + f1_);
-  if (has_drag_) w_drag_ += 0.5 * du.dot(fd_ + fd1_);
+  if (has_loads_)
+    w_ext_ += 0.5 * du.dot(f_ + f1_);
+  if (has_drag_)
+    w_drag_ += 0.5 * du.dot(fd_ + fd1_);
 
   // Commit.
   a_prev_ = a_;
@@ -251,14 +271,16 @@ void Simulation::step() {
   std::swap(v_, v1_);
   std::swap(a_, a1_);
   std::swap(f_, f1_);
-  if (!has_loads_) f1_ = f_;
+  if (!has_loads_)
+    f1_ = f_;
   std::swap(fd_, fd1_);
   t_ = t1;
   ++n_;
   if (!cdofs_.empty()) {
     rc1_.resize(rc_.size());
     reactions(t_, rc1_);
-    for (size_t k = 0; k < cdofs_.size(); ++k) w_reac_ += 0.5 * du[cdofs_[k]] * (rc_[k] + rc1_[k]);
+    for (size_t k = 0; k < cdofs_.size(); ++k)
+      w_reac_ += 0.5 * du[cdofs_[k]] * (rc_[k] + rc1_[k]);
     std::swap(rc_, rc1_);
   }
 }
@@ -279,14 +301,17 @@ Energy Simulation::energy() const {
 
 std::vector<Eigen::Vector3d> Simulation::reactionSums() const {
   std::vector<Eigen::Vector3d> s(model_.constraints.size(), Eigen::Vector3d::Zero());
-  for (size_t k = 0; k < cdofs_.size(); ++k) s[cset_[k]][cdofs_[k] % 3] += rc_[k];
+  for (size_t k = 0; k < cdofs_.size(); ++k)
+    s[cset_[k]][cdofs_[k] % 3] += rc_[k];
   return s;
 }
 
 Eigen::Vector3d Simulation::dragSum() const {
   Eigen::Vector3d s = Eigen::Vector3d::Zero();
-  if (fd_.size() == 0) return s;
-  for (int i = 0; i < model_.mesh.numNodes(); ++i) s += fd_.segment<3>(3 * i);
+  if (fd_.size() == 0)
+    return s;
+  for (int i = 0; i < model_.mesh.numNodes(); ++i)
+    s += fd_.segment<3>(3 * i);
   return s;
 }
 

@@ -97,9 +97,9 @@ private:
   SparseMatrix K_, M_, A_, Afc_, Kc_, Mc_;
   BlockMatrix Kb_; // K in 3x3 blocks for the per-step K u~
   std::unique_ptr<StepSolver> solver_;
-  std::vector<int> cdofs_;       // constrained DOFs, in constraint order
-  std::vector<int> cset_;        // constraint index of each
-  std::vector<double> camp_;     // velocity amplitude of each
+  std::vector<int> cdofs_;                           // constrained DOFs, in constraint order
+  std::vector<int> cset_;                            // constraint index of each
+  std::vector<double> camp_;                         // velocity amplitude of each
   Eigen::VectorXd u_, v_, a_, a_prev_, f_, fd_, rc_; // state and forces at t_n
   Eigen::VectorXd ut_, vt_, ku_, b_, f1_, fd1_, a1_, u1_, v1_, rc1_, ac_, tmp_;
   double t_ = 0, e0_ = 0, c_ = 0;

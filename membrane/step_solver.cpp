@@ -28,7 +28,8 @@ void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& 
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
   for (int i = 0; i < n; ++i) {
     double s = 0;
-    for (int k = outer[i]; k < outer[i + 1]; ++k) s += val[k] * xp[inner[k]];
+    for (int k = outer[i]; k < outer[i + 1]; ++k)
+      s += val[k] * xp[inner[k]];
     yp[i] = s;
   }
 }
@@ -60,7 +61,8 @@ StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double to
   Ab_ = BlockMatrix(A);
   const int nn = n / 3;
   block_inverse_.resize(nn);
-  for (int i = 0; i < nn; ++i) block_inverse_[i] = Ab_.diagonalBlock(i).inverse();
+  for (int i = 0; i < nn; ++i)
+    block_inverse_[i] = Ab_.diagonalBlock(i).inverse();
   r_.resize(n);
   z_.resize(n);
   p_.resize(n);
@@ -78,9 +80,11 @@ int StepSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   }
   int it = 0;
   const bool projected = projection_ > 0 && !X_.empty();
-  if (projected) project(b, x); // x and r_ from the basis, no SpMV
+  if (projected)
+    project(b, x); // x and r_ from the basis, no SpMV
   cg(b, x, it, projected);
-  if (projection_ > 0) remember(x);
+  if (projection_ > 0)
+    remember(x);
   total_iterations_ += it;
   return it;
 }
@@ -115,7 +119,8 @@ void StepSolver::remember(const Eigen::VectorXd& x) {
       ad_ -= c * AX_[i];
     }
   const double nrm2 = d_.dot(ad_);
-  if (!(nrm2 > 0) || !std::isfinite(nrm2)) return;
+  if (!(nrm2 > 0) || !std::isfinite(nrm2))
+    return;
   const double s = 1 / std::sqrt(nrm2);
   X_.push_back(s * d_);
   AX_.push_back(s * ad_);
@@ -130,14 +135,16 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
     x.setZero(n);
     return;
   }
-  if (x.size() != n) x = Eigen::VectorXd::Zero(n);
+  if (x.size() != n)
+    x = Eigen::VectorXd::Zero(n);
   if (!have_residual) {
     Ab_.multiply(x, q_);
     r_ = b - q_;
   }
   const double target = tolerance_ * bnorm;
   double rr = r_.squaredNorm();
-  if (std::sqrt(rr) <= target) return;
+  if (std::sqrt(rr) <= target)
+    return;
   double rz = 0;
 #pragma omp parallel for reduction(+ : rz) schedule(static) if (n > kParallelMin)
   for (int i = 0; i < nn; ++i) {
@@ -161,15 +168,17 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
       rz_new += z_.segment<3>(3 * i).dot(r_.segment<3>(3 * i));
       rr += r_.segment<3>(3 * i).squaredNorm();
     }
-    if (std::sqrt(rr) <= target) return;
+    if (std::sqrt(rr) <= target)
+      return;
     const double beta = rz_new / rz;
     rz = rz_new;
 #pragma omp parallel for schedule(static) if (n > kParallelMin)
-    for (int i = 0; i < n; ++i) p_[i] = z_[i] + beta * p_[i];
+    for (int i = 0; i < n; ++i)
+      p_[i] = z_[i] + beta * p_[i];
   }
   throw DivergenceError("CG did not converge in " + std::to_string(max_iterations_) +
-                        " iterations (relative residual " +
-                        std::to_string(std::sqrt(rr) / bnorm) + ")");
+                        " iterations (relative residual " + std::to_string(std::sqrt(rr) / bnorm) +
+                        ")");
 }
 
 } // namespace lamina::membrane

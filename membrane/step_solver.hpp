@@ -57,8 +57,8 @@ private:
   double tolerance_;
   int max_iterations_;
   std::vector<Eigen::Matrix3d> block_inverse_; // block-Jacobi preconditioner
-  int projection_ = 0;                          // max basis size (0 = off)
-  std::vector<Eigen::VectorXd> X_, AX_;         // A-orthonormal past solutions and A X
+  int projection_ = 0;                         // max basis size (0 = off)
+  std::vector<Eigen::VectorXd> X_, AX_;        // A-orthonormal past solutions and A X
   Eigen::VectorXd x0_, d_, ad_;
   Eigen::VectorXd r_, z_, p_, q_;
   struct Direct;

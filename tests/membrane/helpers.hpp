@@ -1,11 +1,14 @@
 #pragma once
 // Shared helpers of the membrane tests: build a Model from TOML text with
 // inline or catalog materials (never the user's library).
+#include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/toml_reader.hpp"
 #include "membrane/case_file.hpp"
-#include "core/error.hpp"
 #include "membrane/simulation.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -25,6 +28,25 @@ inline Model modelFromText(const std::string& text, const std::string& name = "t
   return buildModel(doc, std::filesystem::path(LAMINA_SOURCE_DIR) / "cases/membrane" / name,
                     testSources());
 }
+
+/// TOML of a square of side @p L with nx x nx squares and the isotropic
+/// section used throughout (E = 1 GPa, nu = 0.3, rho = 1000, h = 1 mm).
+inline std::string isotropicSquare(int nx, double L = 1.0) {
+  return "[mesh]\nLx = " + core::formatExact(L) + "\nnx = " + std::to_string(nx) +
+         "\n[[section]]\nE = 1.0e9\nnu = 0.3\ndensity = 1000.0\nthickness = 1.0e-3\n";
+}
+
+/// Largest |balance| and the energy scale it is compared with.
+struct BalanceTracker {
+  double worst = 0; ///< max |E - E0 - W|
+  double scale = 0; ///< max of T + U and |works|
+  /// Records one step's energies.
+  void add(const Energy& e) {
+    worst = std::max(worst, std::abs(e.balance));
+    scale = std::max({scale, e.kinetic + e.strain, std::abs(e.external_work),
+                      std::abs(e.reaction_work), std::abs(e.drag_work)});
+  }
+};
 
 /// Path of a file in the source tree.
 inline std::filesystem::path sourcePath(const std::string& rel) {

@@ -9,15 +9,7 @@
 using namespace lamina::membrane;
 
 namespace {
-const std::string kGood = R"(
-[mesh]
-Lx = 1.0
-nx = 4
-[[section]]
-E = 1.0e9
-nu = 0.3
-density = 1000.0
-thickness = 1.0e-3
+const std::string kGood = test::isotropicSquare(4) + R"(
 [time]
 dt = 1.0e-5
 t_end = 1.0e-4
@@ -45,7 +37,9 @@ std::filesystem::path tempFile(const std::string& name, const std::string& conte
 }
 } // namespace
 
-TEST(MembraneMalformed, GoodCaseBuilds) { EXPECT_EQ(errorOf(kGood), ""); }
+TEST(MembraneMalformed, GoodCaseBuilds) {
+  EXPECT_EQ(errorOf(kGood), "");
+}
 
 TEST(MembraneMalformed, UnknownKeyIsNamedWithFileAndLine) {
   const auto e = errorOf(replaced(kGood, "t_end", "t_ned = 1.0\nt_end"));
@@ -67,23 +61,24 @@ TEST(MembraneMalformed, NegativeThicknessIsRejected) {
 }
 
 TEST(MembraneMalformed, MissingMeshFileIsNamed) {
-  const auto e = errorOf(replaced(kGood, "Lx = 1.0\nnx = 4", "type = \"gmsh\"\nfile = \"nowhere.msh\""));
+  const auto e =
+      errorOf(replaced(kGood, "Lx = 1.0\nnx = 4", "type = \"gmsh\"\nfile = \"nowhere.msh\""));
   EXPECT_NE(e.find("nowhere.msh"), std::string::npos) << e;
   EXPECT_NE(e.find("not found"), std::string::npos) << e;
 }
 
 TEST(MembraneMalformed, MeshWithoutTrianglesNamesTheFile) {
-  const auto geo = tempFile("lamina-lines-only.geo",
-                            "Point(1) = {0, 0, 0, 0.1};\nPoint(2) = {1, 0, 0, 0.1};\n"
-                            "Line(1) = {1, 2};\n");
-  const auto e = errorOf(replaced(kGood, "Lx = 1.0\nnx = 4",
-                                  "type = \"gmsh\"\nfile = \"" + geo.string() + "\""));
+  const auto geo =
+      tempFile("lamina-lines-only.geo", "Point(1) = {0, 0, 0, 0.1};\nPoint(2) = {1, 0, 0, 0.1};\n"
+                                        "Line(1) = {1, 2};\n");
+  const auto e = errorOf(
+      replaced(kGood, "Lx = 1.0\nnx = 4", "type = \"gmsh\"\nfile = \"" + geo.string() + "\""));
   EXPECT_NE(e.find("lamina-lines-only.geo"), std::string::npos) << e;
   EXPECT_NE(e.find("no"), std::string::npos) << e;
   EXPECT_NE(e.find("triangles"), std::string::npos) << e;
   const auto msh = tempFile("lamina-garbage.msh", "$MeshFormat\nthis is not a mesh\n");
-  const auto e2 = errorOf(replaced(kGood, "Lx = 1.0\nnx = 4",
-                                   "type = \"gmsh\"\nfile = \"" + msh.string() + "\""));
+  const auto e2 = errorOf(
+      replaced(kGood, "Lx = 1.0\nnx = 4", "type = \"gmsh\"\nfile = \"" + msh.string() + "\""));
   EXPECT_NE(e2.find("lamina-garbage.msh"), std::string::npos) << e2;
 }
 
@@ -96,8 +91,8 @@ TEST(MembraneMalformed, UnknownMaterialListsWhatTheLibraryHas) {
   m.density = 1200;
   m.kind = "constants";
   lamina::materials::Library(lib).add(m);
-  const std::string text = replaced(kGood, "E = 1.0e9\nnu = 0.3\ndensity = 1000.0",
-                                    "material = \"no-such-fabric\"");
+  const std::string text =
+      replaced(kGood, "E = 1.0e9\nnu = 0.3\ndensity = 1000.0", "material = \"no-such-fabric\"");
   std::string e;
   try {
     buildModel(lamina::core::parseTomlString(text, "bad.toml"), "bad.toml",

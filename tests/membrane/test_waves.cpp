@@ -28,7 +28,8 @@ double frontPosition(const Simulation& sim, int c, double vhalf, double ymid) {
   const auto& mesh = sim.model().mesh;
   std::vector<std::pair<double, double>> row;
   for (int i = 0; i < mesh.numNodes(); ++i)
-    if (std::abs(mesh.nodes[i].y() - ymid) < 1e-9) row.emplace_back(mesh.nodes[i].x(), sim.v()[3 * i + c]);
+    if (std::abs(mesh.nodes[i].y() - ymid) < 1e-9)
+      row.emplace_back(mesh.nodes[i].x(), sim.v()[3 * i + c]);
   std::sort(row.begin(), row.end());
   for (size_t k = row.size() - 1; k > 0; --k)
     if (row[k - 1].second > vhalf && row[k].second <= vhalf) {
@@ -59,7 +60,8 @@ direction = )" + dir + "\n" + extra);
   double x1 = 0, x2 = 0;
   while (sim.time() < t2 - 0.5 * dt) {
     sim.step();
-    if (std::abs(sim.time() - t1) < 0.5 * dt) x1 = frontPosition(sim, comp, 0.5, 0.025);
+    if (std::abs(sim.time() - t1) < 0.5 * dt)
+      x1 = frontPosition(sim, comp, 0.5, 0.025);
   }
   x2 = frontPosition(sim, comp, 0.5, 0.025);
   return (x2 - x1) / (t2 - t1);
@@ -95,7 +97,8 @@ Lx = 1.0
 nx = 20
 )") + kIsotropic + R"(
 [time]
-dt = )" + std::to_string(period / 200) + R"(
+dt = )" + std::to_string(period / 200) +
+                                R"(
 t_end = 1.0
 [[fixed]]
 nodes = "edges"
@@ -103,7 +106,8 @@ nodes = "edges"
   const int n = m.mesh.numNodes();
   m.u0 = Eigen::VectorXd::Zero(3 * n);
   for (int i = 0; i < n; ++i)
-    m.u0[3 * i + 2] = 1e-3 * std::sin(kPi * m.mesh.nodes[i].x()) * std::sin(kPi * m.mesh.nodes[i].y());
+    m.u0[3 * i + 2] =
+        1e-3 * std::sin(kPi * m.mesh.nodes[i].x()) * std::sin(kPi * m.mesh.nodes[i].y());
   const int centre = m.mesh.nearestNode({0.5, 0.5});
   Simulation sim(m);
   std::vector<double> crossings;
@@ -111,7 +115,8 @@ nodes = "edges"
   while (crossings.size() < 5) {
     sim.step();
     const double w = sim.u()[3 * centre + 2];
-    if ((prev > 0) != (w > 0)) crossings.push_back(tprev + (sim.time() - tprev) * prev / (prev - w));
+    if ((prev > 0) != (w > 0))
+      crossings.push_back(tprev + (sim.time() - tprev) * prev / (prev - w));
     prev = w;
     tprev = sim.time();
   }
@@ -139,7 +144,8 @@ at = [0.5, 0.5]
 speed = 10.0
 )");
   Simulation sim(m);
-  for (int s = 0; s < 70; ++s) sim.step();
+  for (int s = 0; s < 70; ++s)
+    sim.step();
   // Extent of the w field along each axis from the centre: where |w| falls
   // to 5 % of the strike displacement, interpolated between nodes.
   const double wc = 10.0 * sim.time(), thr = 0.05 * wc;
@@ -155,9 +161,8 @@ speed = 10.0
     std::sort(row.begin(), row.end());
     for (size_t k = row.size() - 1; k > 0; --k)
       if (row[k - 1].second > thr && row[k].second <= thr)
-        return row[k - 1].first +
-               (row[k - 1].second - thr) / (row[k - 1].second - row[k].second) *
-                   (row[k].first - row[k - 1].first);
+        return row[k - 1].first + (row[k - 1].second - thr) / (row[k - 1].second - row[k].second) *
+                                      (row[k].first - row[k - 1].first);
     return 0.0;
   };
   const double ratio = extent(0) / extent(1);
