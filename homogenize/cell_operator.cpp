@@ -11,8 +11,8 @@ namespace lamina::homogenize {
 CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
                            const std::vector<materials::Stiffness>& C)
     : grid_(grid), phase_(std::move(phase)) {
-  LAMINA_CHECK(phase_.size() == grid.size(), "phase map has ", phase_.size(),
-               " voxels, the grid ", grid.size());
+  LAMINA_CHECK(phase_.size() == grid.size(), "phase map has ", phase_.size(), " voxels, the grid ",
+               grid.size());
   for (const auto& c : C)
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
@@ -21,7 +21,8 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
   for (const auto& c : C) {
     const double lambda = c(0, 1), mu = c(3, 3);
     const materials::Matrix6 iso = materials::Stiffness::fromLame(lambda, mu).matrix();
-    const bool is_iso = (c.matrix() - iso).cwiseAbs().maxCoeff() <= 1e-14 * c.matrix().cwiseAbs().maxCoeff();
+    const bool is_iso =
+        (c.matrix() - iso).cwiseAbs().maxCoeff() <= 1e-14 * c.matrix().cwiseAbs().maxCoeff();
     iso_.push_back(is_iso ? 1 : 0);
     lame_.push_back(lambda);
     lame_.push_back(mu);
@@ -132,7 +133,7 @@ void CellOperator::divergencePlane(int i, const double* prev, const double* cur,
   const std::size_t N = grid_.size(), P = componentStride();
   const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
   const std::size_t L = static_cast<std::size_t>(n2) + 1; // index k+1 holds voxel k, 0 holds n2-1
-  double* X0 = scratch;         // x-terms of f_x, f_y, f_z: sigma_xx, xy, xz
+  double* X0 = scratch; // x-terms of f_x, f_y, f_z: sigma_xx, xy, xz
   double* X3 = scratch + L;
   double* X5 = scratch + 2 * L;
   double* Y3 = scratch + 3 * L; // y-terms: sigma_xy, yy, yz
@@ -186,7 +187,9 @@ std::size_t CellOperator::componentStride() const {
   return static_cast<std::size_t>(grid_.n[1]) * static_cast<std::size_t>(grid_.n[2]) + 24;
 }
 
-std::size_t CellOperator::planeStride() const { return 6 * componentStride() + 8; }
+std::size_t CellOperator::planeStride() const {
+  return 6 * componentStride() + 8;
+}
 
 void CellOperator::apply(const double* u, const std::array<double, 6>& E, double* f,
                          std::array<double, 6>* average, double* energy) const {

@@ -66,9 +66,9 @@ private:
 
   Grid grid_;
   std::vector<std::int32_t> phase_;
-  std::vector<double> C_; // 36 per phase, row-major, lamina order
-  std::vector<char> iso_;   // per phase: isotropic (use lame_)
-  std::vector<double> lame_; // per phase: lambda, mu
+  std::vector<double> C_;              // 36 per phase, row-major, lamina order
+  std::vector<char> iso_;              // per phase: isotropic (use lame_)
+  std::vector<double> lame_;           // per phase: lambda, mu
   mutable std::vector<double> planes_; // per thread: two voxel planes of stress (6 per voxel)
 };
 

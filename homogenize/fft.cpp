@@ -18,7 +18,9 @@ AlignedBuffer::AlignedBuffer(std::size_t count) : size_(count) {
   data_.reset(p);
 }
 
-void AlignedBuffer::Free::operator()(double* p) const { fftw_free(p); }
+void AlignedBuffer::Free::operator()(double* p) const {
+  fftw_free(p);
+}
 
 namespace {
 // FFTW's planner is not thread-safe and fftw_init_threads must run once.
@@ -98,6 +100,8 @@ void VectorFft::forward(const double* in, fftw_complex* out) const {
   fftw_execute_dft_r2c(r2c_, const_cast<double*>(in), out);
 }
 
-void VectorFft::backward(fftw_complex* in, double* out) const { fftw_execute_dft_c2r(c2r_, in, out); }
+void VectorFft::backward(fftw_complex* in, double* out) const {
+  fftw_execute_dft_c2r(c2r_, in, out);
+}
 
 } // namespace lamina::homogenize

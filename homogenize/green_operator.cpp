@@ -34,10 +34,13 @@ double GreenOperator::apply(const double* r, double* z) const {
 #pragma omp parallel for schedule(static) reduction(+ : rz)
   for (int i = 0; i < n0; ++i)
     for (int j = 0; j < n1; ++j) {
-      const double s0 = sin_[0][static_cast<std::size_t>(i)], c0 = cos_[0][static_cast<std::size_t>(i)];
-      const double s1 = sin_[1][static_cast<std::size_t>(j)], c1 = cos_[1][static_cast<std::size_t>(j)];
+      const double s0 = sin_[0][static_cast<std::size_t>(i)],
+                   c0 = cos_[0][static_cast<std::size_t>(i)];
+      const double s1 = sin_[1][static_cast<std::size_t>(j)],
+                   c1 = cos_[1][static_cast<std::size_t>(j)];
       for (int k = 0; k < m2; ++k) {
-        const double s2 = sin_[2][static_cast<std::size_t>(k)], c2 = cos_[2][static_cast<std::size_t>(k)];
+        const double s2 = sin_[2][static_cast<std::size_t>(k)],
+                     c2 = cos_[2][static_cast<std::size_t>(k)];
         const std::size_t idx = (static_cast<std::size_t>(i) * n1 + j) * m2 + k;
         const double q0 = 2 * s0 * c1 * c2 / h0, q1 = 2 * c0 * s1 * c2 / h1,
                      q2 = 2 * c0 * c1 * s2 / h2;

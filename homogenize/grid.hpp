@@ -12,7 +12,7 @@ namespace lamina::homogenize {
 /// A periodic grid of n0 x n1 x n2 voxels (and as many nodes, at the voxel
 /// corners), C order, x slowest: index (i*n1 + j)*n2 + k.
 struct Grid {
-  std::array<int, 3> n{0, 0, 0};       ///< voxels along x, y, z
+  std::array<int, 3> n{0, 0, 0};          ///< voxels along x, y, z
   std::array<double, 3> h{1.0, 1.0, 1.0}; ///< voxel edge lengths
   /// @return the number of voxels (= nodes)
   std::size_t size() const {

@@ -152,7 +152,7 @@ Result Homogenizer::run() {
   // Threads: as asked, or (auto) all for grids worth it. Below ~64k voxels a
   // CG iteration is too short to amortise the fork/join of its parallel
   // loops, and on shared cores a team can wait a scheduler slice per barrier.
-  const int threads = opt_.threads > 0 ? opt_.threads
+  const int threads = opt_.threads > 0       ? opt_.threads
                       : grid_.size() < 65536 ? 1
                                              : omp_get_max_threads();
   struct ThreadsGuard {
@@ -187,7 +187,8 @@ Result Homogenizer::run() {
   const CellOperator A(grid_, phase_, C_);
   const GreenOperator M(grid_, res.lambda0, res.mu0, fft);
   CgSolver cg(grid_, A, M, static_cast<double>(res.voxels));
-  const double setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double setup_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // solve: six unit strains (lamina order, engineering shear) -> six columns
   core::ProgressLine progress("homogenize", 6, opt_.quiet);
@@ -217,7 +218,9 @@ Result Homogenizer::run() {
   }
   progress.finish();
   if (std::getenv("LAMINA_HOMOGENIZE_PROFILE"))
-    std::fprintf(stderr, "homogenize profile: setup %.3f s, operator %.3f s, preconditioner %.3f s, vector updates %.3f s\n",
+    std::fprintf(stderr,
+                 "homogenize profile: setup %.3f s, operator %.3f s, preconditioner %.3f s, vector "
+                 "updates %.3f s\n",
                  setup_s, cg.time_A, cg.time_M, cg.time_V);
 
   // output: raw and symmetrized C, diagnostics

@@ -38,23 +38,23 @@ struct Options {
 
 /// Outcome of one load case.
 struct LoadCaseResult {
-  int iterations = 0;   ///< CG iterations
-  double residual = 0;  ///< final relative residual
+  int iterations = 0;  ///< CG iterations
+  double residual = 0; ///< final relative residual
 };
 
 /// Everything a homogenization produces.
 struct Result {
-  materials::Stiffness C_raw;       ///< columns from the six load cases (Pa, lamina order)
-  materials::Stiffness C;           ///< symmetrized C_raw
-  double asymmetry = 0;             ///< max |C_raw - C_raw^T| / max |C_raw|
-  double density = 0;               ///< volume average (kg/m^3)
+  materials::Stiffness C_raw;          ///< columns from the six load cases (Pa, lamina order)
+  materials::Stiffness C;              ///< symmetrized C_raw
+  double asymmetry = 0;                ///< max |C_raw - C_raw^T| / max |C_raw|
+  double density = 0;                  ///< volume average (kg/m^3)
   std::array<LoadCaseResult, 6> cases; ///< per load case
   materials::Symmetry symmetry{materials::SymmetryClass::Triclinic, -1}; ///< class of C
-  double symmetry_tol = 0;          ///< relative tolerance used to classify
-  double lambda0 = 0, mu0 = 0;      ///< reference medium (Pa)
-  std::size_t voxels = 0;           ///< number of voxels
+  double symmetry_tol = 0;            ///< relative tolerance used to classify
+  double lambda0 = 0, mu0 = 0;        ///< reference medium (Pa)
+  std::size_t voxels = 0;             ///< number of voxels
   std::vector<double> voxel_fraction; ///< per phase
-  double wall_s = 0;                ///< wall time of run() (s)
+  double wall_s = 0;                  ///< wall time of run() (s)
   /// @return the largest final residual of the six cases
   double maxResidual() const;
   /// @return the iterations of the six cases
@@ -75,8 +75,8 @@ public:
   /// @param C stiffness per phase (lamina order, Pa; validated here)
   /// @param density density per phase (kg/m^3)
   /// @param options solver settings
-  Homogenizer(const Grid& grid, std::vector<std::int32_t> phase, std::vector<materials::Stiffness> C,
-              std::vector<double> density, Options options);
+  Homogenizer(const Grid& grid, std::vector<std::int32_t> phase,
+              std::vector<materials::Stiffness> C, std::vector<double> density, Options options);
 
   /// Called after each CG iteration: load case (0-5), iteration, residual.
   using Monitor = std::function<void(int, int, double)>;

@@ -83,11 +83,10 @@ materials::Material makeEntry(const std::string& name, const micro::CellSpec& sp
   return m;
 }
 
-std::vector<EntryResult> homogenizeIntoLibrary(const micro::CellSpec& spec,
-                                               const micro::UnitCell& cell,
-                                               const std::string& base, const Options& options,
-                                               materials::Library& library, bool overwrite,
-                                               const std::function<void(const EntryResult&)>& report) {
+std::vector<EntryResult>
+homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
+                      const std::string& base, const Options& options, materials::Library& library,
+                      bool overwrite, const std::function<void(const EntryResult&)>& report) {
   const std::vector<double> states = spec.sweepStates();
   bool sweep = false;
   for (const auto& ph : spec.phases)

@@ -43,11 +43,10 @@ struct EntryResult {
 /// Homogenizes @p cell at every J state of @p spec (entryName rule) and adds
 /// each entry to @p library. Checks all names first: an existing entry is an
 /// error unless @p overwrite. @p report, if set, is called after each entry.
-std::vector<EntryResult> homogenizeIntoLibrary(const micro::CellSpec& spec,
-                                               const micro::UnitCell& cell,
-                                               const std::string& base, const Options& options,
-                                               materials::Library& library, bool overwrite,
-                                               const std::function<void(const EntryResult&)>& report = {});
+std::vector<EntryResult>
+homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
+                      const std::string& base, const Options& options, materials::Library& library,
+                      bool overwrite, const std::function<void(const EntryResult&)>& report = {});
 
 /// The `--json` summary of an entry: name, C (6x6, Pa, lamina order),
 /// density, iterations (6), residual, voxels, volume_fraction (all

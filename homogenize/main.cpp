@@ -83,13 +83,13 @@ int main(int argc, char** argv) {
     opt.threads = threads;
     opt.measure = plan == "auto" ? -1 : plan == "measure" ? 1 : 0;
     opt.quiet = quiet;
-    homogenize::homogenizeIntoLibrary(
-        spec, cell, name, opt, lib, overwrite, [&](const homogenize::EntryResult& e) {
-          if (json)
-            std::cout << homogenize::toJson(e).dump() << std::endl;
-          else
-            printHuman(e.name, e.result, cell, lib.path().string());
-        });
+    homogenize::homogenizeIntoLibrary(spec, cell, name, opt, lib, overwrite,
+                                      [&](const homogenize::EntryResult& e) {
+                                        if (json)
+                                          std::cout << homogenize::toJson(e).dump() << std::endl;
+                                        else
+                                          printHuman(e.name, e.result, cell, lib.path().string());
+                                      });
   } catch (const lamina::DivergenceError& e) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());
     return lamina::kExitDivergence;

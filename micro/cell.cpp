@@ -103,7 +103,9 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
   if (!parseShape(shape, p.shape))
     t.fail("shape", "unknown shape '" + shape + "' (sphere, ellipsoid, fiber, layer)");
   switch (p.shape) {
-  case Shape::Sphere: p.semi.setConstant(positive(t, "radius")); break;
+  case Shape::Sphere:
+    p.semi.setConstant(positive(t, "radius"));
+    break;
   case Shape::Ellipsoid: {
     p.semi = readVector3(t, "semi_axes");
     if (!(p.semi.minCoeff() > 0))
@@ -193,7 +195,8 @@ CellSpec readCellString(const std::string& text, const std::string& source,
     if (v.size() != 3)
       c.fail("resolution", "must be N or [N1, N2, N3]");
     for (int i = 0; i < 3; ++i)
-      cell.resolution[static_cast<std::size_t>(i)] = static_cast<int>(v[static_cast<std::size_t>(i)]);
+      cell.resolution[static_cast<std::size_t>(i)] =
+          static_cast<int>(v[static_cast<std::size_t>(i)]);
     for (int i = 0; i < 3; ++i)
       if (v[static_cast<std::size_t>(i)] != std::floor(v[static_cast<std::size_t>(i)]))
         c.fail("resolution", "must be integers");

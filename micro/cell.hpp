@@ -41,25 +41,25 @@ enum class Placement { Single, Lattice, Random };
 
 /// One `[[inclusions]]` table: a prototype inclusion and how to place copies.
 struct InclusionGroup {
-  Inclusion prototype;          ///< shape, phase, semi-axes/radius/thickness, orientation
+  Inclusion prototype; ///< shape, phase, semi-axes/radius/thickness, orientation
   Placement placement = Placement::Single;
   std::optional<double> volume_fraction; ///< target analytic fraction of the group
   std::array<int, 3> lattice{1, 1, 1};   ///< copies along x, y, z (lattice)
-  int count = 0;                ///< random: number of copies (0: from the fraction)
-  std::uint64_t seed = 1;       ///< random: seed of the generator
-  double min_gap = 0;           ///< minimum distance between inclusions
-  int max_attempts = 200000;    ///< random: attempts per inclusion before giving up
-  std::string key;              ///< "inclusions[i]" for messages
+  int count = 0;                         ///< random: number of copies (0: from the fraction)
+  std::uint64_t seed = 1;                ///< random: seed of the generator
+  double min_gap = 0;                    ///< minimum distance between inclusions
+  int max_attempts = 200000;             ///< random: attempts per inclusion before giving up
+  std::string key;                       ///< "inclusions[i]" for messages
 };
 
 /// A cell file, parsed and validated (nothing placed yet).
 struct CellSpec {
-  std::string file;             ///< path it was read from
-  std::string text;             ///< the full file text (provenance)
-  std::string description;      ///< optional one-line description
-  std::array<int, 3> resolution{32, 32, 32}; ///< voxels along x, y, z
+  std::string file;                               ///< path it was read from
+  std::string text;                               ///< the full file text (provenance)
+  std::string description;                        ///< optional one-line description
+  std::array<int, 3> resolution{32, 32, 32};      ///< voxels along x, y, z
   Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths
-  std::vector<Phase> phases;    ///< phases[0] is the matrix
+  std::vector<Phase> phases;                      ///< phases[0] is the matrix
   std::vector<InclusionGroup> groups;
 
   /// @return the index of the phase named @p name, -1 if none

@@ -21,10 +21,14 @@ bool parseShape(const std::string& w, Shape& out) {
 
 std::string toString(Shape s) {
   switch (s) {
-  case Shape::Sphere: return "sphere";
-  case Shape::Ellipsoid: return "ellipsoid";
-  case Shape::Fiber: return "fiber";
-  case Shape::Layer: return "layer";
+  case Shape::Sphere:
+    return "sphere";
+  case Shape::Ellipsoid:
+    return "ellipsoid";
+  case Shape::Fiber:
+    return "fiber";
+  case Shape::Layer:
+    return "layer";
   }
   return "?";
 }
@@ -50,7 +54,8 @@ bool Inclusion::contains(const Eigen::Vector3d& p, const Eigen::Vector3d& L) con
         r2 += d[i] * d[i];
     return r2 <= radius * radius;
   }
-  case Shape::Layer: return std::abs(d[axis]) <= 0.5 * thickness;
+  case Shape::Layer:
+    return std::abs(d[axis]) <= 0.5 * thickness;
   }
   return false;
 }
@@ -58,9 +63,12 @@ bool Inclusion::contains(const Eigen::Vector3d& p, const Eigen::Vector3d& L) con
 double Inclusion::volume(const Eigen::Vector3d& L) const {
   switch (shape) {
   case Shape::Sphere:
-  case Shape::Ellipsoid: return 4.0 / 3.0 * M_PI * semi.prod();
-  case Shape::Fiber: return M_PI * radius * radius * L[axis];
-  case Shape::Layer: return thickness * L.prod() / L[axis];
+  case Shape::Ellipsoid:
+    return 4.0 / 3.0 * M_PI * semi.prod();
+  case Shape::Fiber:
+    return M_PI * radius * radius * L[axis];
+  case Shape::Layer:
+    return thickness * L.prod() / L[axis];
   }
   return 0;
 }

@@ -26,13 +26,13 @@ std::string toString(Shape s);
 /// One placed inclusion.
 struct Inclusion {
   Shape shape = Shape::Sphere;
-  int phase = 0;                           ///< phase index it is made of
+  int phase = 0;                                    ///< phase index it is made of
   Eigen::Vector3d center = Eigen::Vector3d::Zero(); ///< centre (a point on the axis / mid-plane)
   Eigen::Vector3d semi = Eigen::Vector3d::Ones();   ///< ellipsoid semi-axes (sphere: r, r, r)
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< columns: the ellipsoid axes in cell axes
-  double radius = 0;                       ///< fiber radius
-  double thickness = 0;                    ///< layer thickness
-  int axis = 0;                            ///< fiber direction / layer normal (0=x,1=y,2=z)
+  double radius = 0;                                ///< fiber radius
+  double thickness = 0;                             ///< layer thickness
+  int axis = 0; ///< fiber direction / layer normal (0=x,1=y,2=z)
 
   /// @return whether @p p (cell coordinates) lies inside, using the nearest
   /// periodic image of p - center in a cell of size @p L

@@ -27,13 +27,13 @@ namespace lamina::micro {
 
 /// A phase of a unit cell.
 struct Phase {
-  std::string name;        ///< unique name within the cell
-  std::string law;         ///< "isotropic", "anisotropic" or "gvbo"
-  std::string source;      ///< "catalog:NAME" or "inline"
-  materials::Stiffness C;  ///< elastic stiffness (gvbo: at J = 1), lamina order, Pa
-  double density = 0;      ///< kg/m^3, > 0
+  std::string name;       ///< unique name within the cell
+  std::string law;        ///< "isotropic", "anisotropic" or "gvbo"
+  std::string source;     ///< "catalog:NAME" or "inline"
+  materials::Stiffness C; ///< elastic stiffness (gvbo: at J = 1), lamina order, Pa
+  double density = 0;     ///< kg/m^3, > 0
   std::optional<materials::GvboParameters> gvbo; ///< set for law "gvbo"
-  std::vector<double> J;   ///< gvbo states to homogenize at (empty: J = 1)
+  std::vector<double> J;                         ///< gvbo states to homogenize at (empty: J = 1)
 
   /// Stiffness of the phase at matrix state @p J (lamina order, Pa). For a
   /// gvbo phase: isotropic from gvboModuli(J) (eqs. 13-16 of the chapter);

@@ -17,8 +17,8 @@ void writePhaseMap(const UnitCell& cell, const std::vector<std::string>& phase_n
                    const std::filesystem::path& h5);
 
 /// Reads "/phases" from @p h5 into a UnitCell (n, phase, voxel fractions; the
-/// size is left at 1: effective moduli do not depend on it). @p phase_count is the number of phases expected;
-/// an index outside [0, phase_count) is an error naming the file.
+/// size is left at 1: effective moduli do not depend on it). @p phase_count is the number of phases
+/// expected; an index outside [0, phase_count) is an error naming the file.
 UnitCell readPhaseMap(const std::filesystem::path& h5, int phase_count);
 
 } // namespace lamina::micro

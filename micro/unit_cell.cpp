@@ -19,7 +19,8 @@ void UnitCell::countFractions() {
 
 namespace {
 
-[[noreturn]] void groupError(const CellSpec& spec, const InclusionGroup& g, const std::string& msg) {
+[[noreturn]] void groupError(const CellSpec& spec, const InclusionGroup& g,
+                             const std::string& msg) {
   throw Error(msg, {spec.file, 0, g.key});
 }
 
@@ -29,8 +30,9 @@ void checkFits(const CellSpec& spec, const InclusionGroup& g, const Inclusion& i
     const bool unbounded = (inc.shape == Shape::Fiber && i == inc.axis) ||
                            (inc.shape == Shape::Layer && i != inc.axis);
     if (!unbounded && 2 * e[i] + g.min_gap >= spec.size[i])
-      groupError(spec, g, "inclusion (with min_gap) does not fit in the cell along axis " +
-                              std::string(1, "xyz"[i]) + ": lower its size or volume_fraction");
+      groupError(spec, g,
+                 "inclusion (with min_gap) does not fit in the cell along axis " +
+                     std::string(1, "xyz"[i]) + ": lower its size or volume_fraction");
   }
 }
 
@@ -119,8 +121,8 @@ std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>
 
 std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
                                    const std::array<int, 3>& n, const Eigen::Vector3d& size) {
-  const std::size_t total =
-      static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
+  const std::size_t total = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *
+                            static_cast<std::size_t>(n[2]);
   std::vector<std::int32_t> map(total, 0);
   const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
   for (const Inclusion& inc : inclusions) {
@@ -132,11 +134,14 @@ std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
         lo[static_cast<std::size_t>(d)] = 0;
         hi[static_cast<std::size_t>(d)] = n[static_cast<std::size_t>(d)] - 1;
       } else {
-        lo[static_cast<std::size_t>(d)] = static_cast<int>(std::floor((inc.center[d] - e[d]) / h[d] - 0.5)) - 1;
-        hi[static_cast<std::size_t>(d)] = static_cast<int>(std::ceil((inc.center[d] + e[d]) / h[d] - 0.5)) + 1;
+        lo[static_cast<std::size_t>(d)] =
+            static_cast<int>(std::floor((inc.center[d] - e[d]) / h[d] - 0.5)) - 1;
+        hi[static_cast<std::size_t>(d)] =
+            static_cast<int>(std::ceil((inc.center[d] + e[d]) / h[d] - 0.5)) + 1;
       }
       // never visit a voxel twice (threads write disjoint voxels)
-      if (hi[static_cast<std::size_t>(d)] - lo[static_cast<std::size_t>(d)] + 1 >= n[static_cast<std::size_t>(d)]) {
+      if (hi[static_cast<std::size_t>(d)] - lo[static_cast<std::size_t>(d)] + 1 >=
+          n[static_cast<std::size_t>(d)]) {
         lo[static_cast<std::size_t>(d)] = 0;
         hi[static_cast<std::size_t>(d)] = n[static_cast<std::size_t>(d)] - 1;
       }
@@ -148,9 +153,11 @@ std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
         for (int k = lo[2]; k <= hi[2]; ++k) {
           const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
           if (inc.contains(p, size)) {
-            const std::size_t idx = (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
-                                     static_cast<std::size_t>(wrap(j, n[1]))) * static_cast<std::size_t>(n[2]) +
-                                    static_cast<std::size_t>(wrap(k, n[2]));
+            const std::size_t idx =
+                (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
+                 static_cast<std::size_t>(wrap(j, n[1]))) *
+                    static_cast<std::size_t>(n[2]) +
+                static_cast<std::size_t>(wrap(k, n[2]));
             map[idx] = inc.phase;
           }
         }

@@ -19,21 +19,23 @@ namespace lamina::micro {
 
 /// A unit cell with its phase map.
 struct UnitCell {
-  std::array<int, 3> n{0, 0, 0};   ///< voxels along x, y, z
+  std::array<int, 3> n{0, 0, 0};                  ///< voxels along x, y, z
   Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths
-  std::vector<std::int32_t> phase; ///< phase index per voxel, C order, x slowest: (i*n1+j)*n2+k
-  std::vector<Inclusion> inclusions; ///< every placed inclusion
-  std::vector<double> target_fraction;   ///< per group: the requested fraction (NaN if none)
+  std::vector<std::int32_t> phase;     ///< phase index per voxel, C order, x slowest: (i*n1+j)*n2+k
+  std::vector<Inclusion> inclusions;   ///< every placed inclusion
+  std::vector<double> target_fraction; ///< per group: the requested fraction (NaN if none)
   std::vector<double> analytic_fraction; ///< per group: analytic volume / cell volume
   std::vector<double> voxel_fraction;    ///< per phase: fraction of voxels
-  int phase_count = 0;             ///< number of phases
+  int phase_count = 0;                   ///< number of phases
 
   /// @return the number of voxels
   std::size_t voxels() const { return phase.size(); }
   /// @return the linear index of voxel (i, j, k)
   std::size_t index(int i, int j, int k) const {
     return (static_cast<std::size_t>(i) * static_cast<std::size_t>(n[1]) +
-            static_cast<std::size_t>(j)) * static_cast<std::size_t>(n[2]) + static_cast<std::size_t>(k);
+            static_cast<std::size_t>(j)) *
+               static_cast<std::size_t>(n[2]) +
+           static_cast<std::size_t>(k);
   }
   /// Recomputes voxel_fraction from the phase map.
   void countFractions();

@@ -12,10 +12,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 
 using namespace lamina;
 
@@ -57,7 +57,8 @@ int main(int argc, char** argv) {
     for (int r = 0; r < reps; ++r) {
       const auto a = std::chrono::steady_clock::now();
       fn();
-      best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+      best = std::min(best,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
     }
     std::printf("%-28s %8.2f ms wall (best of %d) %8.2f ms cpu (mean, all threads)\n", what,
                 1e3 * best, reps, 1e3 * (cpu() - c0) / reps);

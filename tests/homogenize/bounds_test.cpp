@@ -45,8 +45,8 @@ Solved solve(const std::string& text, double tol) {
 // geometry with this fraction, here the voxel fraction reached); the density
 // is the volume average.
 TEST(SingleSphere, CubicSymmetryAndBulkInsideHashinShtrikman) {
-  const auto s = solve(twoPhaseCell(24, "shape = \"sphere\"\nradius = 0.3\nvolume_fraction = 0.19\n"),
-                       1e-10);
+  const auto s =
+      solve(twoPhaseCell(24, "shape = \"sphere\"\nradius = 0.3\nvolume_fraction = 0.19\n"), 1e-10);
   const Matrix6& C = s.r.C.matrix();
   const double scale = C.cwiseAbs().maxCoeff();
   for (int a = 0; a < 3; ++a) {
@@ -64,8 +64,8 @@ TEST(SingleSphere, CubicSymmetryAndBulkInsideHashinShtrikman) {
       }
   EXPECT_EQ(s.r.symmetry.cls, materials::SymmetryClass::Cubic);
   const double f = s.cell.voxel_fraction[1];
-  const auto hs = hashinShtrikman(bulkOf(E1, nu1), shearOf(E1, nu1), bulkOf(E2, nu2),
-                                  shearOf(E2, nu2), f);
+  const auto hs =
+      hashinShtrikman(bulkOf(E1, nu1), shearOf(E1, nu1), bulkOf(E2, nu2), shearOf(E2, nu2), f);
   const double K = (C(0, 0) + 2 * C(0, 1)) / 3;
   EXPECT_GT(K, hs.K_lo);
   EXPECT_LT(K, hs.K_hi);
@@ -92,8 +92,8 @@ TEST(RandomSpheres, IsotropicWithinToleranceAndInsideHashinShtrikman) {
   }
   EXPECT_NEAR(2 * c44 / (c11 - c12), 1.0, 0.05);
   const double f = s.cell.voxel_fraction[1];
-  const auto hs = hashinShtrikman(bulkOf(E1, nu1), shearOf(E1, nu1), bulkOf(E2, nu2),
-                                  shearOf(E2, nu2), f);
+  const auto hs =
+      hashinShtrikman(bulkOf(E1, nu1), shearOf(E1, nu1), bulkOf(E2, nu2), shearOf(E2, nu2), f);
   const double K = materials::voigtBulk(s.r.C), G = materials::voigtShear(s.r.C);
   EXPECT_GT(K, hs.K_lo);
   EXPECT_LT(K, hs.K_hi);

@@ -15,8 +15,8 @@
 #include <filesystem>
 #include <string>
 
-#include <unistd.h>
 #include <memory>
+#include <unistd.h>
 
 namespace lamina::test {
 namespace {
@@ -114,7 +114,8 @@ TEST(LibraryEntry, RoundTripsWithProvenance) {
                             spec.densities(), opt);
   const auto r = h.run();
   EXPECT_NEAR(r.density, 1100.0, 1e-9);
-  const auto dir = std::filesystem::temp_directory_path() / (std::string("lamina-homog-test") + "-" + std::to_string(getpid()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   (std::string("lamina-homog-test") + "-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto path = dir / "library.toml";
   std::filesystem::remove(path);
@@ -144,13 +145,15 @@ TEST(LibraryEntry, SweepNames) {
 // object with the documented keys; the single-sphere C there is cubic
 // (C11 = C22 = C33 to 1e-9) and its density the average of 1100 kg/m^3.
 TEST(Program, JsonInterface) {
-  const auto dir = std::filesystem::temp_directory_path() / (std::string("lamina-homog-cli") + "-" + std::to_string(getpid()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   (std::string("lamina-homog-cli") + "-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto lib = dir / "lib.toml";
   std::filesystem::remove(lib);
   const std::string cmd = std::string(LAMINA_BINARY_DIR) + "/bin/homogenize " + LAMINA_SOURCE_DIR +
                           "/cases/cells/sphere.toml --name s8 --resolution 8 --json --quiet "
-                          "--library " + lib.string();
+                          "--library " +
+                          lib.string();
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
   ASSERT_TRUE(pipe);
   std::string out;
@@ -158,8 +161,8 @@ TEST(Program, JsonInterface) {
   while (std::fgets(buf, sizeof buf, pipe.get()))
     out += buf;
   const auto j = nlohmann::json::parse(out);
-  for (const char* key : {"name", "C", "density", "iterations", "residual", "voxels",
-                          "volume_fraction", "wall_s"})
+  for (const char* key :
+       {"name", "C", "density", "iterations", "residual", "voxels", "volume_fraction", "wall_s"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["name"], "s8");
   EXPECT_EQ(j["voxels"], 512);

@@ -61,17 +61,23 @@ void checkLaminate(int axis) {
         map[static_cast<std::size_t>((i * n[1] + j) * n[2] + k)] = c < 5 ? 0 : c < 9 ? 1 : 2;
       }
   const auto r = homogenizeMap(n, map, C, 1e-10);
-  const Matrix6 exact = laminate({C[0].matrix(), C[1].matrix(), C[2].matrix()},
-                                 {5.0 / 12, 4.0 / 12, 3.0 / 12}, axis);
+  const Matrix6 exact =
+      laminate({C[0].matrix(), C[1].matrix(), C[2].matrix()}, {5.0 / 12, 4.0 / 12, 3.0 / 12}, axis);
   EXPECT_LT(relDiff(r.C.matrix(), exact), 1e-8) << "axis " << axis << "\n"
-                                                 << r.C.matrix() << "\n\n"
-                                                 << exact;
+                                                << r.C.matrix() << "\n\n"
+                                                << exact;
   expectWithinVoigtReuss(r.C.matrix(), C, {5.0 / 12, 4.0 / 12, 3.0 / 12});
 }
 
-TEST(Laminate, NormalToXMatchesExactFormula) { checkLaminate(0); }
-TEST(Laminate, NormalToYMatchesExactFormula) { checkLaminate(1); }
-TEST(Laminate, NormalToZMatchesExactFormula) { checkLaminate(2); }
+TEST(Laminate, NormalToXMatchesExactFormula) {
+  checkLaminate(0);
+}
+TEST(Laminate, NormalToYMatchesExactFormula) {
+  checkLaminate(1);
+}
+TEST(Laminate, NormalToZMatchesExactFormula) {
+  checkLaminate(2);
+}
 
 // Rotating the microstructure by +90 degrees about z (voxel (i, j, k) ->
 // (n-1-j, i, k): x' = -y, y' = x up to a periodic shift) must rotate C:

@@ -3,8 +3,8 @@
 // formula, Hashin-Shtrikman bounds, dilute Eshelby estimate, Voigt/Reuss
 // bounds. None of this calls lamina::homogenize.
 
-#include "homogenize/homogenizer.hpp"
 #include "homogenize/grid.hpp"
+#include "homogenize/homogenizer.hpp"
 #include "materials/stiffness.hpp"
 
 #include <gtest/gtest.h>
@@ -85,8 +85,12 @@ inline HsBounds hashinShtrikman(double K1, double G1, double K2, double G2, doub
 }
 
 /// Bulk and shear moduli from E and nu.
-inline double bulkOf(double E, double nu) { return E / (3 * (1 - 2 * nu)); }
-inline double shearOf(double E, double nu) { return E / (2 * (1 + nu)); }
+inline double bulkOf(double E, double nu) {
+  return E / (3 * (1 - 2 * nu));
+}
+inline double shearOf(double E, double nu) {
+  return E / (2 * (1 + nu));
+}
 
 /// Asserts Reuss <= C <= Voigt in the sense of quadratic forms (eigenvalues
 /// of C_V - C and C - C_R not below -rel * max|C|): the discrete cell problem

@@ -29,7 +29,8 @@ void expectError(const std::string& text, const std::string& key, const std::str
 }
 
 TEST(MalformedCell, UnknownKeyIsNamed) {
-  expectError(kHead + "[[inclusions]]\nphase = \"i\"\nshape = \"sphere\"\nradius = 0.1\nradus = 2\n",
+  expectError(kHead +
+                  "[[inclusions]]\nphase = \"i\"\nshape = \"sphere\"\nradius = 0.1\nradus = 2\n",
               "radus");
 }
 

@@ -14,8 +14,8 @@
 #include <filesystem>
 #include <string>
 
-#include <unistd.h>
 #include <fstream>
+#include <unistd.h>
 
 namespace lamina::micro {
 namespace {
@@ -55,8 +55,7 @@ TEST(VolumeFraction, LatticeFiberAndLayer) {
                                           "0.2\nvolume_fraction = 0.5\n"));
   EXPECT_NEAR(fib.inclusions[0].radius, std::sqrt(0.5 / M_PI), 1e-14);
   EXPECT_NEAR(fib.voxel_fraction[1], 0.5, 0.5 * 0.01);
-  const UnitCell lay =
-      buildCell(spec(32, "shape = \"layer\"\nnormal = \"y\"\nthickness = 0.25\n"));
+  const UnitCell lay = buildCell(spec(32, "shape = \"layer\"\nnormal = \"y\"\nthickness = 0.25\n"));
   EXPECT_DOUBLE_EQ(lay.voxel_fraction[1], 0.25);
 }
 
@@ -135,7 +134,8 @@ TEST(GvboPhase, ModuliAtJMatchHandValues) {
 TEST(PhaseMap, WritesHdf5AndXdmfThatReadBack) {
   const auto s = spec(6, "shape = \"layer\"\nnormal = \"x\"\nthickness = 0.4\n");
   UnitCell c = buildCell(s, {6, 4, 2});
-  const auto dir = std::filesystem::temp_directory_path() / (std::string("lamina-micro-test") + "-" + std::to_string(getpid()));
+  const auto dir = std::filesystem::temp_directory_path() /
+                   (std::string("lamina-micro-test") + "-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
   const auto h5 = dir / "phases.h5";
   writePhaseMap(c, {"m", "i"}, h5);
