@@ -38,12 +38,13 @@ double GreenOperator::apply(const double* r, double* z) const {
                    c0 = cos_[0][static_cast<std::size_t>(i)];
       const double s1 = sin_[1][static_cast<std::size_t>(j)],
                    c1 = cos_[1][static_cast<std::size_t>(j)];
+      // q = (A c2, B c2, Cz s2): the (i, j) factors hoisted out of the k loop
+      const double A = 2 * s0 * c1 / h0, B = 2 * c0 * s1 / h1, Cz = 2 * c0 * c1 / h2;
       for (int k = 0; k < m2; ++k) {
         const double s2 = sin_[2][static_cast<std::size_t>(k)],
                      c2 = cos_[2][static_cast<std::size_t>(k)];
         const std::size_t idx = (static_cast<std::size_t>(i) * n1 + j) * m2 + k;
-        const double q0 = 2 * s0 * c1 * c2 / h0, q1 = 2 * c0 * s1 * c2 / h1,
-                     q2 = 2 * c0 * c1 * s2 / h2;
+        const double q0 = A * c2, q1 = B * c2, q2 = Cz * s2;
         const double qq = q0 * q0 + q1 * q1 + q2 * q2;
         fftw_complex* a = w + idx;
         fftw_complex* b = w + Nc + idx;
