@@ -43,11 +43,11 @@ Simulation::Simulation(const Model& model) : model_(model) {
   t0 = std::chrono::steady_clock::now();
   // eq. (30): A = M + tau^2/2 beta2 K (HHT: times 1 + alpha on K).
   c_ = 0.5 * ts.dt * ts.dt * ts.beta2;
-  A_ = M_;
+  SparseMatrix A = M_; // local: the solver keeps its own copy or factor
   {
     const double ck = c_ * (1 + ts.hht_alpha);
-    const Eigen::Index nnz = A_.nonZeros();
-    double* av = A_.valuePtr();
+    const Eigen::Index nnz = A.nonZeros();
+    double* av = A.valuePtr();
     const double* kv = K_.valuePtr();
     for (Eigen::Index k = 0; k < nnz; ++k)
       av[k] += ck * kv[k];
@@ -67,7 +67,7 @@ Simulation::Simulation(const Model& model) : model_(model) {
   {
     std::vector<Eigen::Triplet<double>> fc;
     for (int i = 0; i < ndof; ++i)
-      for (SparseMatrix::InnerIterator it(A_, i); it; ++it) {
+      for (SparseMatrix::InnerIterator it(A, i); it; ++it) {
         const int j = static_cast<int>(it.col());
         if (constrained[i]) {
           it.valueRef() = (i == j) ? 1.0 : 0.0;
@@ -83,7 +83,7 @@ Simulation::Simulation(const Model& model) : model_(model) {
   Kc_ = extractRows(K_, cdofs_);
   Mc_ = extractRows(M_, cdofs_);
   solver_ =
-      std::make_unique<StepSolver>(A_, ts.solver, ts.tolerance, ts.max_iterations, ts.projection);
+      std::make_unique<StepSolver>(A, ts.solver, ts.tolerance, ts.max_iterations, ts.projection);
   setup_s_ = seconds(t0);
 
   has_loads_ = !model.loads.empty();

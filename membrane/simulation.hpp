@@ -94,7 +94,7 @@ private:
   void reactions(double t, Eigen::VectorXd& r) const;
 
   const Model& model_;
-  SparseMatrix K_, M_, A_, Afc_, Kc_, Mc_;
+  SparseMatrix K_, M_, Afc_, Kc_, Mc_;
   BlockMatrix Kb_; // K in 3x3 blocks for the per-step K u~
   std::unique_ptr<StepSolver> solver_;
   std::vector<int> cdofs_;                           // constrained DOFs, in constraint order

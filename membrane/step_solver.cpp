@@ -44,7 +44,7 @@ struct StepSolver::Direct {
 
 StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance,
                        int max_iterations, int projection)
-    : A_(A), kind_(kind), tolerance_(tolerance), max_iterations_(max_iterations),
+    : kind_(kind), tolerance_(tolerance), max_iterations_(max_iterations),
       projection_(projection) {
   const int n = static_cast<int>(A.rows());
   if (kind_ == "cholesky") {

@@ -30,7 +30,8 @@ namespace lamina::membrane {
 class StepSolver {
 public:
   /// Sets up the solver for @p A (symmetric positive definite, 3x3 block
-  /// pattern). @p kind is "cg" or "cholesky".
+  /// pattern). @p kind is "cg" or "cholesky". A is copied (blocks) or
+  /// factorized: it need not outlive the solver.
   StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance, int max_iterations,
              int projection = 0);
   ~StepSolver();
@@ -51,7 +52,6 @@ private:
   void cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations, bool have_residual);
   void project(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   void remember(const Eigen::VectorXd& x);
-  const SparseMatrix& A_;
   BlockMatrix Ab_; // the same matrix in 3x3 blocks, for the CG products
   std::string kind_;
   double tolerance_;
