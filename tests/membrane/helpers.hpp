@@ -12,12 +12,20 @@
 #include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 namespace lamina::membrane::test {
+
+/// A path in the temp folder unique to this process (parallel test runs
+/// and several build trees must not share files).
+inline std::filesystem::path tempPath(const std::string& name) {
+  return std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "-" + name);
+}
 
 /// Material sources for tests: an empty library in the temp folder and the
 /// source tree's catalog.
 inline MaterialSources testSources() {
-  const auto lib = std::filesystem::temp_directory_path() / "lamina-membrane-test-no-library.toml";
+  const auto lib = tempPath("lamina-membrane-test-no-library.toml");
   std::filesystem::remove(lib);
   return {lib.string(), std::string(LAMINA_SOURCE_DIR) + "/materials/catalog.toml"};
 }

@@ -161,7 +161,7 @@ speed = 1.0
 field_every = 0
 )");
   RunOptions opt;
-  opt.out_dir = std::filesystem::temp_directory_path() / "lamina-membrane-diverge";
+  opt.out_dir = test::tempPath("lamina-membrane-diverge");
   opt.quiet = true;
   std::filesystem::remove_all(opt.out_dir);
   EXPECT_THROW(runModel(m, opt), lamina::DivergenceError);

@@ -31,7 +31,7 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
 }
 
 std::filesystem::path tempFile(const std::string& name, const std::string& content) {
-  const auto p = std::filesystem::temp_directory_path() / name;
+  const auto p = test::tempPath(name);
   std::ofstream(p) << content;
   return p;
 }
@@ -83,7 +83,7 @@ TEST(MembraneMalformed, MeshWithoutTrianglesNamesTheFile) {
 }
 
 TEST(MembraneMalformed, UnknownMaterialListsWhatTheLibraryHas) {
-  const auto lib = std::filesystem::temp_directory_path() / "lamina-membrane-test-library.toml";
+  const auto lib = test::tempPath("lamina-membrane-test-library.toml");
   std::filesystem::remove(lib);
   lamina::materials::Material m;
   m.name = "my-fabric";

@@ -91,7 +91,7 @@ field_every = 5
 )",
                                       "outputs.toml");
   RunOptions opt;
-  opt.out_dir = std::filesystem::temp_directory_path() / "lamina-membrane-outputs";
+  opt.out_dir = test::tempPath("lamina-membrane-outputs");
   opt.quiet = true;
   std::filesystem::remove_all(opt.out_dir);
   const auto s = runModel(m, opt);
