@@ -173,4 +173,5 @@ field_every = 0
   EXPECT_TRUE(std::isfinite(s["max_abs_w"].get<double>()));
   EXPECT_LT(s["steps"].get<long>(), 1000);
   EXPECT_TRUE(std::filesystem::exists(opt.out_dir / "probes.csv"));
+  std::filesystem::remove_all(opt.out_dir);
 }

@@ -80,6 +80,8 @@ TEST(MembraneMalformed, MeshWithoutTrianglesNamesTheFile) {
   const auto e2 = errorOf(
       replaced(kGood, "Lx = 1.0\nnx = 4", "type = \"gmsh\"\nfile = \"" + msh.string() + "\""));
   EXPECT_NE(e2.find("lamina-garbage.msh"), std::string::npos) << e2;
+  std::filesystem::remove(geo);
+  std::filesystem::remove(msh);
 }
 
 TEST(MembraneMalformed, UnknownMaterialListsWhatTheLibraryHas) {
@@ -103,6 +105,8 @@ TEST(MembraneMalformed, UnknownMaterialListsWhatTheLibraryHas) {
   EXPECT_NE(e.find("no-such-fabric"), std::string::npos) << e;
   EXPECT_NE(e.find("my-fabric"), std::string::npos) << e;
   EXPECT_NE(e.find("section"), std::string::npos) << e;
+  std::filesystem::remove(lib);
+  std::filesystem::remove(lib.string() + ".lock");
 }
 
 TEST(MembraneMalformed, SelectorsThatSelectNothingAreNamed) {

@@ -113,4 +113,5 @@ field_every = 5
   const std::string xdmf((std::istreambuf_iterator<char>(x)), std::istreambuf_iterator<char>());
   EXPECT_NE(xdmf.find("step2"), std::string::npos); // steps 0, 5, 10
   EXPECT_EQ(xdmf.find("step3"), std::string::npos);
+  std::filesystem::remove_all(opt.out_dir);
 }
