@@ -44,8 +44,7 @@ struct StepSolver::Direct {
 
 StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance,
                        int max_iterations, int projection)
-    : kind_(kind), tolerance_(tolerance), max_iterations_(max_iterations),
-      projection_(projection) {
+    : kind_(kind), tolerance_(tolerance), max_iterations_(max_iterations), projection_(projection) {
   const int n = static_cast<int>(A.rows());
   if (kind_ == "cholesky") {
     direct_ = std::make_unique<Direct>();
@@ -60,9 +59,10 @@ StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double to
   // Block-Jacobi: invert the 3x3 diagonal block of every node.
   Ab_ = BlockMatrix(A);
   const int nn = n / 3;
-  block_inverse_.resize(nn);
+  // One inverse per stored row: shared rows share their inverse too (fewer bytes per iteration).
+  block_inverse_.resize(Ab_.sharedRows() > 0 ? Ab_.sharedRows() : nn);
   for (int i = 0; i < nn; ++i)
-    block_inverse_[i] = Ab_.diagonalBlock(i).inverse();
+    block_inverse_[Ab_.rowOf(i)] = Ab_.diagonalBlock(i).inverse();
   r_.resize(n);
   z_.resize(n);
   p_.resize(n);
@@ -148,13 +148,12 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   double rz = 0;
 #pragma omp parallel for reduction(+ : rz) schedule(static) if (n > kParallelMin)
   for (int i = 0; i < nn; ++i) {
-    z_.segment<3>(3 * i) = block_inverse_[i] * r_.segment<3>(3 * i);
+    z_.segment<3>(3 * i) = block_inverse_[Ab_.rowOf(i)] * r_.segment<3>(3 * i);
     rz += z_.segment<3>(3 * i).dot(r_.segment<3>(3 * i));
   }
   p_ = z_;
   for (iterations = 1; iterations <= max_iterations_; ++iterations) {
-    Ab_.multiply(p_, q_);
-    const double pq = p_.dot(q_);
+    const double pq = Ab_.multiplyDot(p_, q_);
     if (!(pq > 0) || !std::isfinite(pq))
       throw DivergenceError("CG breakdown: A is not positive definite or the step diverged");
     const double alpha = rz / pq;
@@ -164,7 +163,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
     for (int i = 0; i < nn; ++i) {
       x.segment<3>(3 * i) += alpha * p_.segment<3>(3 * i);
       r_.segment<3>(3 * i) -= alpha * q_.segment<3>(3 * i);
-      z_.segment<3>(3 * i) = block_inverse_[i] * r_.segment<3>(3 * i);
+      z_.segment<3>(3 * i) = block_inverse_[Ab_.rowOf(i)] * r_.segment<3>(3 * i);
       rz_new += z_.segment<3>(3 * i).dot(r_.segment<3>(3 * i));
       rr += r_.segment<3>(3 * i).squaredNorm();
     }
