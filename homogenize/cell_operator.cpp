@@ -200,27 +200,33 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
     planes_.assign(2 * P * static_cast<std::size_t>(nt), 0.0);
   double total[6] = {0, 0, 0, 0, 0, 0};
   double total_energy = 0;
-  // Each thread owns a slab of x-planes and rolls two voxel planes of stress
-  // through it (recomputing the one plane below its slab): no barrier inside,
-  // which matters when the cores are shared, and 2 planes of memory per thread.
+  // The x-planes are cut into slabs (4 per thread, handed out dynamically, so
+  // a thread on a core shared with other work does fewer of them). A thread
+  // rolls two voxel planes of stress through its slab, recomputing the plane
+  // below the slab: no barrier inside, 2 planes of memory per thread.
+  const int slabs = nt == 1 ? 1 : std::min(n0, 4 * nt);
 #pragma omp parallel num_threads(nt)
   {
-    const int t = omp_get_thread_num(), T = omp_get_num_threads();
-    const int begin = static_cast<int>(static_cast<long>(n0) * t / T);
-    const int end = static_cast<int>(static_cast<long>(n0) * (t + 1) / T);
+    const int t = omp_get_thread_num();
     double acc[6] = {0, 0, 0, 0, 0, 0};
     double my_energy = 0;
     double* en = energy ? &my_energy : nullptr;
     std::vector<double> scratch(9 * (static_cast<std::size_t>(grid_.n[2]) + 1));
-    double* prev = planes_.data() + 2 * P * static_cast<std::size_t>(t);
-    double* cur = prev + P;
-    if (f && begin < end)
-      stressPlane(begin == 0 ? n0 - 1 : begin - 1, u, E, prev, nullptr, nullptr, scratch.data());
-    for (int i = begin; i < end; ++i) {
-      stressPlane(i, u, E, cur, average ? acc : nullptr, en, scratch.data());
-      if (f)
-        divergencePlane(i, prev, cur, f, scratch.data());
-      std::swap(prev, cur);
+#pragma omp for schedule(dynamic, 1) nowait
+    for (int slab = 0; slab < slabs; ++slab) {
+      const int begin = static_cast<int>(static_cast<long>(n0) * slab / slabs);
+      const int end = static_cast<int>(static_cast<long>(n0) * (slab + 1) / slabs);
+      double* prev = planes_.data() + 2 * P * static_cast<std::size_t>(t);
+      double* cur = prev + P;
+      if (f && begin < end)
+        stressPlane(begin == 0 ? n0 - 1 : begin - 1, u, E, prev, nullptr, nullptr,
+                    scratch.data());
+      for (int i = begin; i < end; ++i) {
+        stressPlane(i, u, E, cur, average ? acc : nullptr, en, scratch.data());
+        if (f)
+          divergencePlane(i, prev, cur, f, scratch.data());
+        std::swap(prev, cur);
+      }
     }
 #pragma omp critical(lamina_cell_operator_average)
     {

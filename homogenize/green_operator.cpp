@@ -31,7 +31,7 @@ double GreenOperator::apply(const double* r, double* z) const {
   const double zero2 = 1e-20 * qmax2;
   const int n2 = grid_.n[2];
   double rz = 0;
-#pragma omp parallel for schedule(static) reduction(+ : rz)
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : rz)
   for (int i = 0; i < n0; ++i)
     for (int j = 0; j < n1; ++j) {
       const double s0 = sin_[0][static_cast<std::size_t>(i)],

@@ -97,7 +97,7 @@ public:
                               "): NaN/Inf or an indefinite phase stiffness");
       for (std::size_t a = 0; a < 6; ++a)
         sigma[a] += alpha * sigma_p[a];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 32768)
       for (std::size_t i = 0; i < n; ++i)
         r[i] -= alpha * w[i];
       auto t2 = Clock::now();
@@ -109,7 +109,7 @@ public:
         throw DivergenceError("residual is NaN/Inf in conjugate gradients");
       const double beta = rz_new / rz;
       rz = rz_new;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 32768)
       for (std::size_t i = 0; i < n; ++i)
         p[i] = w[i] + beta * p[i];
       time_V += std::chrono::duration<double>(Clock::now() - t3).count();
