@@ -171,6 +171,7 @@ TEST(LibraryEntry, RoundTripsWithProvenance) {
   EXPECT_EQ(m.provenance["residual"].value_or(-1.0), r.maxResidual());
   EXPECT_EQ(m.provenance["resolution"][0].value_or(0), 12);
   EXPECT_EQ(m.provenance["iterations"].as_array()->size(), 6u);
+  std::filesystem::remove_all(dir);
 }
 
 // J sweep entries are NAME-J<J> with %g; a cell without a sweep keeps NAME.
@@ -210,6 +211,7 @@ TEST(Program, JsonInterface) {
   EXPECT_NEAR(c33 / c11, 1.0, 1e-9);
   EXPECT_NEAR(j["density"].get<double>(), 1100.0, 1e-9);
   EXPECT_TRUE(materials::Library(lib).contains("s8"));
+  std::filesystem::remove_all(dir);
 }
 
 } // namespace

@@ -151,6 +151,8 @@ TEST(PhaseMap, WritesHdf5AndXdmfThatReadBack) {
   std::string xml((std::istreambuf_iterator<char>(x)), std::istreambuf_iterator<char>());
   EXPECT_NE(xml.find("phases.h5:/phases"), std::string::npos);
   EXPECT_NE(xml.find("Dimensions=\"7 5 3\""), std::string::npos);
+  x.close();
+  std::filesystem::remove_all(dir);
 }
 
 } // namespace
