@@ -128,26 +128,16 @@ double BlockMatrix::product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
 }
 
 Eigen::Matrix3d BlockMatrix::diagonalBlock(int i) const {
-  if (!kind_.empty()) {
-    const int t = kind_[i];
-    for (int b = kstart_[t]; b < kstart_[t + 1]; ++b)
-      if (koff_[b] == 0) {
-        Eigen::Matrix3d m;
-        for (int c = 0; c < 3; ++c)
-          for (int d = 0; d < 3; ++d)
-            m(c, d) = kval_[9 * b + 3 * c + d];
-        return m;
-      }
-    return Eigen::Matrix3d::Zero();
-  }
-  for (int b = start_[i]; b < start_[i + 1]; ++b)
-    if (col_[b] == i) {
-      Eigen::Matrix3d m;
-      for (int c = 0; c < 3; ++c)
-        for (int d = 0; d < 3; ++d)
-          m(c, d) = val_[9 * b + 3 * c + d];
-      return m;
-    }
+  // Shared rows store column offsets (diagonal = 0), plain rows columns (= i).
+  const bool shared = !kind_.empty();
+  const int t = shared ? kind_[i] : i;
+  const std::vector<int>& start = shared ? kstart_ : start_;
+  const std::vector<int>& cols = shared ? koff_ : col_;
+  const std::vector<double>& vals = shared ? kval_ : val_;
+  const int diagonal = shared ? 0 : i;
+  for (int b = start[t]; b < start[t + 1]; ++b)
+    if (cols[b] == diagonal)
+      return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(vals.data() + 9 * b);
   return Eigen::Matrix3d::Zero();
 }
 
