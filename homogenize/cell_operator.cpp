@@ -34,7 +34,7 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
 }
 
 // Stress of voxel plane i (voxels i, spanning nodes i and i+1) into S
-// (structure of arrays: component a of voxel (j, k) at S[a*n1*n2 + j*n2 + k]).
+// (structure of arrays: component a of voxel (j, k) at S[a*componentStride() + j*n2 + k]).
 // The rotated gradient factorises into differences and averages along each
 // axis: d/dx = Dx Ay Az, d/dy = Ax Dy Az, d/dz = Ax Ay Dz. Per node column k
 // we form X = Dx Ay u, Y = Ax Dy u, Z = Ax Ay u from the four node rows and
@@ -219,8 +219,7 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
       double* prev = planes_.data() + 2 * P * static_cast<std::size_t>(t);
       double* cur = prev + P;
       if (f && begin < end)
-        stressPlane(begin == 0 ? n0 - 1 : begin - 1, u, E, prev, nullptr, nullptr,
-                    scratch.data());
+        stressPlane(begin == 0 ? n0 - 1 : begin - 1, u, E, prev, nullptr, nullptr, scratch.data());
       for (int i = begin; i < end; ++i) {
         stressPlane(i, u, E, cur, average ? acc : nullptr, en, scratch.data());
         if (f)
