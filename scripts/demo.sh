@@ -19,6 +19,8 @@ step() { printf '\n== %s\n' "$*"; }
 
 step "1. Homogenize the polyurea cell (45-degree hard ellipsoids, 19 %, GVBO soft matrix)"
 "$BIN/micro" cases/cells/polyurea.toml --out "$OUT/cells/polyurea-phases.h5"
+"$PY" scripts/plot_cell.py "$OUT/cells/polyurea-phases.h5" "$OUT/cells/polyurea-cell.png" \
+  "polyurea cell: hard ellipsoids (19 %) at 45 degrees from z"
 "$BIN/homogenize" cases/cells/polyurea.toml --library "$LIB" --name polyurea-45 --json \
   > "$OUT/cells/polyurea-45.json"
 step "   and an E-glass fibre cell (50 % fibres along x in the same matrix) for a fabric ply"
@@ -55,6 +57,7 @@ run fabric-quasi-square cases/demo/square-impact.toml fabric-quasi
 run table1-paper cases/membrane/table1-anisotropic.toml table1-anisotropic
 
 step "4. Results"
+printf '  %-24s %s\n' cells "$(cd "$OUT/cells" && ls | tr '\n' ' ')"
 for d in "$OUT"/runs/*/; do
   printf '  %-24s %s\n' "$(basename "$d")" "$(cd "$d" && ls *.xdmf speed.png probes.png summary.txt | tr '\n' ' ')"
 done

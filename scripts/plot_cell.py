@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Picture of a phase map written by `micro`: two mid-plane slices and the
 fraction of inclusion phase averaged along y.
-Usage: /usr/bin/python3 bench/homogenize/plot_cell.py PHASES.h5 OUT.png [TITLE]
+Usage: /usr/bin/python3 scripts/plot_cell.py PHASES.h5 OUT.png [TITLE]
 (docs/images/homogenize-polyurea-cell.png: micro cases/cells/polyurea.toml
 --out /tmp/pu64.h5 --resolution 64, then this script.)"""
 import sys
