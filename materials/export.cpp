@@ -5,7 +5,10 @@
 #include "materials/conversions.hpp"
 #include "materials/symmetry.hpp"
 
+#include <cstdio>
+#include <cstring>
 #include <sstream>
+#include <vector>
 
 namespace lamina::materials {
 
@@ -17,45 +20,87 @@ std::string cardName(const std::string& name) {
   return out;
 }
 
-std::string abaqusLike(const Material& m, const std::string& type) {
+// Abaqus reads lines of up to 256 characters, CalculiX of up to 132: both
+// take 8 values per data line. Abaqus gets 17 significant digits (8 x 24
+// characters fit); CalculiX gets 9 ("%.9g" is at most 15 characters, so a
+// line of 8 comma-separated values stays within 127).
+std::string abaqusLike(const Material& m, const std::string& type, bool full) {
   std::ostringstream os;
   const auto v = abaqusCardValues(m.C.matrix());
+  auto f = [full](double x) { return full ? core::formatExact(x) : core::formatShort(x, 9); };
   os << "** lamina material '" << m.name << "' (" << m.kind << "), SI units: Pa, kg/m^3\n"
-     << "** D1111 D1122 D2222 D1133 D2233 D3333 D1112 D2212 D3312 D1212 D1113 D2213 D3313 "
-        "D1213 D1313 D1123 D2223 D3323 D1223 D1323 D2323\n"
+     << "** D1111 D1122 D2222 D1133 D2233 D3333 D1112 D2212\n"
+     << "** D3312 D1212 D1113 D2213 D3313 D1213 D1313 D1123\n"
+     << "** D2223 D3323 D1223 D1323 D2323\n"
      << "*MATERIAL, NAME=" << cardName(m.name) << "\n"
      << "*ELASTIC, TYPE=" << type << "\n";
   for (std::size_t i = 0; i < v.size(); ++i)
-    os << core::formatExact(v[i]) << ((i % 8 == 7 || i + 1 == v.size()) ? "\n" : ", ");
-  os << "*DENSITY\n" << core::formatExact(m.density) << "\n";
+    os << f(v[i]) << ((i % 8 == 7 || i + 1 == v.size()) ? "\n" : (full ? ", " : ","));
+  os << "*DENSITY\n" << f(m.density) << "\n";
   return os.str();
 }
 
-std::string lsdyna(const Material& m) {
+// One LS-DYNA fixed-format field of @p width columns: right-justified, at
+// most width - 1 characters so neighbouring fields stay apart, with as many
+// significant digits as fit (3-4 in 10 columns, 13-17 in 20 for a stiffness in Pa).
+std::string field(double x, int width) {
+  char buf[48];
+  if (x == 0) {
+    std::snprintf(buf, sizeof buf, "%*s", width, "0.0");
+    return buf;
+  }
+  for (int p = 16; p >= 0; --p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p + 1, x);
+    if (static_cast<int>(std::strlen(buf)) < width)
+      break;
+    std::snprintf(buf, sizeof buf, "%.*E", p, x);
+    if (static_cast<int>(std::strlen(buf)) < width)
+      break;
+  }
+  char out[64];
+  std::snprintf(out, sizeof out, "%*s", width, buf);
+  return out;
+}
+
+// *MAT_ANISOTROPIC_ELASTIC (MAT_002) in fixed format, 8 fields per card.
+// Large format (@p large): the keyword carries the "+" suffix (LS-DYNA R7.1
+// and later) and every field is 20 columns wide, 160 per card, keeping 13
+// significant digits. Standard format: 10-column fields, 80 per card, 3-4 digits.
+std::string lsdyna(const Material& m, bool large) {
   const auto c = lsdynaCardValues(m.C.matrix());
+  const int w = large ? 20 : 10;
   std::ostringstream os;
-  auto f = [](double x) { return core::formatExact(x); };
+  auto card = [&](const std::vector<double>& values) {
+    for (double x : values)
+      os << field(x, w);
+    os << "\n";
+  };
+  auto header = [&](const std::vector<std::string>& names) {
+    os << "$";
+    for (std::size_t i = 0; i < names.size(); ++i)
+      os << std::string(static_cast<std::size_t>(w) - names[i].size() - (i == 0 ? 1 : 0), ' ')
+         << names[i];
+    os << "\n";
+  };
   os << "$ lamina material '" << m.name << "' (" << m.kind << "), SI units: Pa, kg/m^3, m, s\n"
      << "$ C in xx yy zz xy yz zx order (engineering shear), upper triangle by columns\n"
-     << "*MAT_ANISOTROPIC_ELASTIC_TITLE\n"
-     << m.name << "\n"
-     << "$     MID,       RO,      C11,      C12,      C22,      C13,      C23,      C33\n"
-     << "1," << f(m.density);
-  for (std::size_t i = 0; i < 6; ++i)
-    os << "," << f(c[i]);
-  os << "\n$     C14,      C24,      C34,      C44,      C15,      C25,      C35,      C45\n";
-  for (std::size_t i = 6; i < 14; ++i)
-    os << (i > 6 ? "," : "") << f(c[i]);
-  os << "\n$     C55,      C16,      C26,      C36,      C46,      C56,      C66,     AOPT\n";
-  for (std::size_t i = 14; i < 21; ++i)
-    os << (i > 14 ? "," : "") << f(c[i]);
+     << (large ? "$ large format: 20-column fields\n"
+               : "$ standard format: 10-column fields keep 3-4 digits; lsdyna gives 13+\n")
+     << "*MAT_ANISOTROPIC_ELASTIC_TITLE" << (large ? "+" : "") << "\n"
+     << m.name.substr(0, large ? 160 : 80) << "\n";
+  header({"MID", "RO", "C11", "C12", "C22", "C13", "C23", "C33"});
+  os << std::string(static_cast<std::size_t>(w) - 1, ' ') << "1";
+  card({m.density, c[0], c[1], c[2], c[3], c[4], c[5]});
+  header({"C14", "C24", "C34", "C44", "C15", "C25", "C35", "C45"});
+  card({c[6], c[7], c[8], c[9], c[10], c[11], c[12], c[13]});
   // AOPT = 2: globally orthotropic axes from vectors A = x and D = y, so the
   // constants act in the global frame exactly as lamina stores them.
-  os << ",2.0\n"
-     << "$      XP,       YP,       ZP,       A1,       A2,       A3,     MACF\n"
-     << "0.0,0.0,0.0,1.0,0.0,0.0,1\n"
-     << "$      V1,       V2,       V3,       D1,       D2,       D3,     BETA,      REF\n"
-     << "0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0\n";
+  header({"C55", "C16", "C26", "C36", "C46", "C56", "C66", "AOPT"});
+  card({c[14], c[15], c[16], c[17], c[18], c[19], c[20], 2.0});
+  header({"XP", "YP", "ZP", "A1", "A2", "A3", "MACF"});
+  card({0, 0, 0, 1, 0, 0, 1});
+  header({"V1", "V2", "V3", "D1", "D2", "D3", "BETA", "REF"});
+  card({0, 0, 0, 0, 1, 0, 0, 0});
   return os.str();
 }
 } // namespace
@@ -102,14 +147,16 @@ nlohmann::json materialToJson(const Material& m) {
 
 std::string exportCard(const Material& m, const std::string& format) {
   if (format == "abaqus")
-    return abaqusLike(m, "ANISOTROPIC");
+    return abaqusLike(m, "ANISOTROPIC", true);
   if (format == "calculix")
-    return abaqusLike(m, "ANISO");
+    return abaqusLike(m, "ANISO", false);
   if (format == "lsdyna")
-    return lsdyna(m);
+    return lsdyna(m, true);
+  if (format == "lsdyna-small")
+    return lsdyna(m, false);
   if (format == "json")
     return materialToJson(m).dump(2) + "\n";
-  throw Error("unknown export format '" + format + "' (abaqus, lsdyna, calculix, json)",
+  throw Error("unknown export format '" + format + "' (abaqus, calculix, lsdyna, lsdyna-small, json)",
               {"--format", 0, format});
 }
 

@@ -6,12 +6,16 @@
 ///             D2222 D1133 D2233 D3333 D1112 D2212 D3312 D1212 D1113 D2213
 ///             D3313 D1213 D1313 D1123 D2223 D3323 D1223 D1323 D2323, 8 per
 ///             line), *DENSITY.
-/// - calculix: the same card with *ELASTIC, TYPE=ANISO.
-/// - lsdyna:   *MAT_ANISOTROPIC_ELASTIC (MAT_002), comma-separated free format:
-///             MID RO C11 C12 C22 C13 C23 C33 / C14 C24 C34 C44 C15 C25 C35 C45 /
-///             C55 C16 C26 C36 C46 C56 C66 AOPT / XP YP ZP A1 A2 A3 MACF /
-///             V1 V2 V3 D1 D2 D3 BETA REF, with AOPT = 2, A = x, D = y
-///             (material axes = global axes). Order xx yy zz xy yz zx.
+/// - calculix: the same card with *ELASTIC, TYPE=ANISO, 9 significant digits
+///             so that a data line stays within CalculiX's 132 columns.
+/// - lsdyna:   *MAT_ANISOTROPIC_ELASTIC_TITLE+ (MAT_002, large format: the "+"
+///             suffix of LS-DYNA R7.1+, 20-column fields, 13 significant
+///             digits): MID RO C11 C12 C22 C13 C23 C33 / C14 C24 C34 C44 C15
+///             C25 C35 C45 / C55 C16 C26 C36 C46 C56 C66 AOPT / XP YP ZP A1 A2
+///             A3 MACF / V1 V2 V3 D1 D2 D3 BETA REF, with AOPT = 2, A = x,
+///             D = y (material axes = global axes). Order xx yy zz xy yz zx.
+/// - lsdyna-small: the same card in standard format (10-column fields, 80
+///             columns per card, 3-4 significant digits) for older readers.
 /// - json:     the object of materialToJson().
 
 #include "materials/material.hpp"
@@ -23,7 +27,7 @@
 namespace lamina::materials {
 
 /// @return the card text for @p format ("abaqus", "calculix", "lsdyna",
-/// "json"); throws lamina::Error for an unknown format.
+/// "lsdyna-small", "json"); throws lamina::Error for an unknown format.
 std::string exportCard(const Material& m, const std::string& format);
 
 /// @return {"name", "C", "density", "kind", "symmetry", "symmetry_axis",

@@ -131,8 +131,8 @@ int main(int argc, char** argv) {
 
   auto* exportCmd = app.add_subcommand("export", "print a card for another code");
   exportCmd->add_option("NAME", name, "entry name")->required();
-  exportCmd->add_option("--format", format, "abaqus | lsdyna | calculix | json")
-      ->check(CLI::IsMember({"abaqus", "lsdyna", "calculix", "json"}));
+  exportCmd->add_option("--format", format, "abaqus | calculix | lsdyna | lsdyna-small | json")
+      ->check(CLI::IsMember({"abaqus", "calculix", "lsdyna", "lsdyna-small", "json"}));
 
   auto* remove = app.add_subcommand("remove", "remove an entry");
   remove->add_option("NAME", name, "entry name")->required();

@@ -175,15 +175,12 @@ TEST_F(MaterialsProgram, AbaqusAndCalculixCardsFollowManualOrder) {
   }
 }
 
-// LS-DYNA *MAT_ANISOTROPIC_ELASTIC card 1: MID RO C11 C12 C22 C13 C23 C33,
-// card 2: C14 C24 C34 C44 C15 C25 C35 C45, card 3: C55 C16 C26 C36 C46 C56
-// C66 AOPT, order xx yy zz xy yz zx: C44 = 80, C55 = 20, C66 = 30 GPa.
-TEST_F(MaterialsProgram, LsdynaCardFollowsManualOrder) {
-  ASSERT_EQ(run("add t1 --from-catalog table1-anisotropic").status, 0);
-  const auto r = run("export t1 --format lsdyna");
-  ASSERT_EQ(r.status, 0) << r.err;
+// The data cards of an LS-DYNA keyword in fixed format: every line after the
+// keyword and its title, cut into fields of @p width columns. Checks that no
+// line is longer than 8 fields (what LS-DYNA reads; the rest is ignored).
+std::vector<std::vector<double>> fixedFormatCards(const std::string& text, int width) {
   std::vector<std::vector<double>> cards;
-  std::istringstream in(r.out);
+  std::istringstream in(text);
   std::string line;
   bool started = false;
   while (std::getline(in, line)) {
@@ -194,28 +191,94 @@ TEST_F(MaterialsProgram, LsdynaCardFollowsManualOrder) {
     }
     if (!started || line.empty() || line[0] == '$')
       continue;
+    EXPECT_LE(line.size(), static_cast<std::size_t>(8 * width)) << line;
     std::vector<double> values;
-    std::istringstream items(line);
-    std::string item;
-    while (std::getline(items, item, ','))
-      values.push_back(std::stod(item));
+    for (std::size_t k = 0; k < line.size(); k += static_cast<std::size_t>(width))
+      values.push_back(std::stod(line.substr(k, static_cast<std::size_t>(width))));
     cards.push_back(values);
   }
-  ASSERT_GE(cards.size(), 3u) << r.out;
-  ASSERT_EQ(cards[0].size(), 8u);
-  ASSERT_EQ(cards[1].size(), 8u);
-  ASSERT_EQ(cards[2].size(), 8u);
-  EXPECT_EQ(cards[0][1], 1600.0); // RO
-  const double c1[6] = {150, 40, 150, 10, 80, 150};
-  for (int k = 0; k < 6; ++k)
-    EXPECT_EQ(cards[0][static_cast<std::size_t>(k + 2)], c1[k] * GPa);
-  const double c2[8] = {0, 0, 0, 80, 0, 0, 0, 0};
-  for (int k = 0; k < 8; ++k)
-    EXPECT_EQ(cards[1][static_cast<std::size_t>(k)], c2[k] * GPa);
-  const double c3[7] = {20, 0, 0, 0, 0, 0, 30};
-  for (int k = 0; k < 7; ++k)
-    EXPECT_EQ(cards[2][static_cast<std::size_t>(k)], c3[k] * GPa);
-  EXPECT_EQ(cards[2][7], 2.0); // AOPT = 2: material axes from A = x, D = y
+  return cards;
+}
+
+// LS-DYNA *MAT_ANISOTROPIC_ELASTIC card 1: MID RO C11 C12 C22 C13 C23 C33,
+// card 2: C14 C24 C34 C44 C15 C25 C35 C45, card 3: C55 C16 C26 C36 C46 C56
+// C66 AOPT, order xx yy zz xy yz zx: C44 = 80, C55 = 20, C66 = 30 GPa. Large
+// format ("+" suffix) has 20-column fields, standard format 10 columns.
+TEST_F(MaterialsProgram, LsdynaCardFollowsManualOrder) {
+  ASSERT_EQ(run("add t1 --from-catalog table1-anisotropic").status, 0);
+  for (const auto& [format, width] : {std::pair<std::string, int>{"lsdyna", 20}, {"lsdyna-small", 10}}) {
+    const auto r = run("export t1 --format " + format);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find(width == 20 ? "*MAT_ANISOTROPIC_ELASTIC_TITLE+\n"
+                                     : "*MAT_ANISOTROPIC_ELASTIC_TITLE\n"),
+              std::string::npos)
+        << r.out;
+    const auto cards = fixedFormatCards(r.out, width);
+    ASSERT_GE(cards.size(), 3u) << r.out;
+    ASSERT_EQ(cards[0].size(), 8u);
+    ASSERT_EQ(cards[1].size(), 8u);
+    ASSERT_EQ(cards[2].size(), 8u);
+    EXPECT_EQ(cards[0][1], 1600.0); // RO
+    const double c1[6] = {150, 40, 150, 10, 80, 150};
+    for (int k = 0; k < 6; ++k)
+      EXPECT_EQ(cards[0][static_cast<std::size_t>(k + 2)], c1[k] * GPa) << format;
+    const double c2[8] = {0, 0, 0, 80, 0, 0, 0, 0};
+    for (int k = 0; k < 8; ++k)
+      EXPECT_EQ(cards[1][static_cast<std::size_t>(k)], c2[k] * GPa) << format;
+    const double c3[7] = {20, 0, 0, 0, 0, 0, 30};
+    for (int k = 0; k < 7; ++k)
+      EXPECT_EQ(cards[2][static_cast<std::size_t>(k)], c3[k] * GPa) << format;
+    EXPECT_EQ(cards[2][7], 2.0); // AOPT = 2: material axes from A = x, D = y
+  }
+}
+
+// Homogenized entries carry 17-digit constants of any sign: the cards must
+// still respect each reader's line limits (LS-DYNA 8 fields of 20 or 10
+// columns, CalculiX 132 columns, Abaqus 256) and keep the digits the format
+// allows: 17 for Abaqus, 9 for CalculiX (relative 5e-9), 13 or more for
+// LS-DYNA large format (1e-12), 3 for a negative value in 9 characters of
+// standard format ("-1.84E+10": relative 5e-3).
+TEST_F(MaterialsProgram, CardsOfFullPrecisionConstantsFitTheirReaders) {
+  std::mt19937_64 rng(99);
+  const mat::Matrix6 c = lamina::test::randomSpd(rng); // negative off-diagonals too
+  std::ostringstream constants;
+  constants.precision(17);
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j)
+      constants << (i || j ? "," : "") << c(i, j);
+  ASSERT_EQ(run("add full --constants " + constants.str() + " --density 1234.5678901234567").status, 0);
+  const mat::Matrix6 stored = mat::Library(lib_).get("full").C.matrix();
+  for (const auto& [format, width, tol] :
+       {std::tuple<std::string, int, double>{"lsdyna", 20, 1e-12}, {"lsdyna-small", 10, 5e-3}}) {
+    const auto r = run("export full --format " + format);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto cards = fixedFormatCards(r.out, width);
+    ASSERT_GE(cards.size(), 3u);
+    const std::vector<double> v{cards[0][2], cards[0][3], cards[0][4], cards[0][5], cards[0][6],
+                                cards[0][7], cards[1][0], cards[1][1], cards[1][2], cards[1][3],
+                                cards[1][4], cards[1][5], cards[1][6], cards[1][7], cards[2][0],
+                                cards[2][1], cards[2][2], cards[2][3], cards[2][4], cards[2][5],
+                                cards[2][6]};
+    const auto expected = mat::lsdynaCardValues(stored);
+    for (std::size_t k = 0; k < 21; ++k)
+      EXPECT_NEAR(v[k], expected[k], tol * std::abs(expected[k])) << format << " value #" << k + 1;
+  }
+  for (const auto& [format, limit, keyword, tol] :
+       {std::tuple<std::string, std::size_t, std::string, double>{
+            "abaqus", 256, "*ELASTIC, TYPE=ANISOTROPIC", 0.0},
+        {"calculix", 132, "*ELASTIC, TYPE=ANISO", 5e-9}}) {
+    const auto r = run("export full --format " + format);
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::istringstream in(r.out);
+    std::string line;
+    while (std::getline(in, line))
+      EXPECT_LE(line.size(), limit) << format << ": " << line;
+    const std::vector<double> v = cardNumbers(r.out, keyword);
+    ASSERT_EQ(v.size(), 21u) << r.out;
+    const auto expected = mat::abaqusCardValues(stored);
+    for (std::size_t k = 0; k < 21; ++k)
+      EXPECT_NEAR(v[k], expected[k], tol * std::abs(expected[k])) << format << " value #" << k + 1;
+  }
 }
 
 TEST_F(MaterialsProgram, ExportJsonEqualsShowJson) {
