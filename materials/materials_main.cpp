@@ -126,7 +126,8 @@ int main(int argc, char** argv) {
   auto* layup = app.add_subcommand("layup", "store a layup of plies as a new entry");
   layup->add_option("NAME", name, "new entry name")->required();
   layup->add_option("--ply", plies, "MATERIAL:ANGLE_DEG:THICKNESS_M (repeat, bottom to top)")
-      ->required();
+      ->required()
+      ->allow_extra_args(false); // one value per flag, so a positional may follow
   layup->add_flag("--overwrite", overwrite, "replace an existing entry of that name");
 
   auto* exportCmd = app.add_subcommand("export", "print a card for another code");
@@ -182,7 +183,8 @@ int main(int argc, char** argv) {
         m.provenance.insert("catalog_key", fromCatalog);
       } else if (!constants.empty()) {
         if (!(density > 0))
-          throw lamina::Error("--density (kg/m^3, > 0) is required with --constants",
+          throw lamina::Error(density == 0 ? "--density (kg/m^3) is required with --constants"
+                                           : "density must be > 0 (kg/m^3)",
                               {"--density", 0, ""});
         m.C = mat::Stiffness::fromUpperTriangle(parseConstants(constants));
         m.density = density;

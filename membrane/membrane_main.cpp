@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
   run->add_option("--out", out_dir, "output folder");
   run->add_flag("--json", json, "print summary.json on stdout");
   run->add_option("--library", library, "materials library file");
-  run->add_option("--set", overrides, "override a case key: --set time.dt=1e-7");
+  run->add_option("--set", overrides, "override a case key: --set time.dt=1e-7 (repeatable)")
+      ->allow_extra_args(false); // one value per flag, so a positional may follow
 
   auto* conv = app.add_subcommand("converge", "convergence study (paper section 4)");
   conv->add_option("case", case_path, "case file (TOML, structured mesh)")->required();
@@ -30,7 +31,8 @@ int main(int argc, char** argv) {
   conv->add_option("--sample-every", sample_every, "compare every n-th coarse step");
   conv->add_flag("--json", json, "print the rates as JSON");
   conv->add_option("--library", library, "materials library file");
-  conv->add_option("--set", overrides, "override a case key");
+  conv->add_option("--set", overrides, "override a case key (repeatable)")
+      ->allow_extra_args(false); // one value per flag, so a positional may follow
 
   try {
     app.parse(argc, argv);
