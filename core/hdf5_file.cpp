@@ -30,9 +30,15 @@ const SilenceHdf5 silence_hdf5_stack_dumps; // errors are reported as lamina::Er
 H5File::H5File(const std::filesystem::path& path, Mode mode) : path_(path) {
   hid_t id = -1;
   switch (mode) {
-  case Mode::Create: id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT); break;
-  case Mode::ReadOnly: id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT); break;
-  case Mode::ReadWrite: id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT); break;
+  case Mode::Create:
+    id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    break;
+  case Mode::ReadOnly:
+    id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    break;
+  case Mode::ReadWrite:
+    id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    break;
   }
   if (id < 0)
     fail(mode == Mode::Create ? "cannot create HDF5 file" : "cannot open HDF5 file", "");
@@ -171,6 +177,8 @@ std::string H5File::readStringAttribute(const std::string& object, const std::st
   return out;
 }
 
-void H5File::flush() { H5Fflush(file_.id(), H5F_SCOPE_GLOBAL); }
+void H5File::flush() {
+  H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
+}
 
 } // namespace lamina::core

@@ -58,8 +58,7 @@ public:
   /// @return whether the object (dataset or group) @p name exists.
   bool exists(const std::string& name) const;
   /// Attaches a string attribute to object @p object ("/" for the file).
-  void writeAttribute(const std::string& object, const std::string& attr,
-                      const std::string& value);
+  void writeAttribute(const std::string& object, const std::string& attr, const std::string& value);
   /// Attaches a double attribute to object @p object.
   void writeAttribute(const std::string& object, const std::string& attr, double value);
   /// Reads a string attribute.

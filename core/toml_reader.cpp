@@ -12,17 +12,26 @@ namespace {
 
 std::string typeName(const toml::node& n) {
   switch (n.type()) {
-  case toml::node_type::table: return "table";
-  case toml::node_type::array: return "array";
-  case toml::node_type::string: return "string";
-  case toml::node_type::integer: return "integer";
-  case toml::node_type::floating_point: return "float";
-  case toml::node_type::boolean: return "boolean";
-  default: return "date/time";
+  case toml::node_type::table:
+    return "table";
+  case toml::node_type::array:
+    return "array";
+  case toml::node_type::string:
+    return "string";
+  case toml::node_type::integer:
+    return "integer";
+  case toml::node_type::floating_point:
+    return "float";
+  case toml::node_type::boolean:
+    return "boolean";
+  default:
+    return "date/time";
   }
 }
 
-int lineOfNode(const toml::node& n) { return static_cast<int>(n.source().begin.line); }
+int lineOfNode(const toml::node& n) {
+  return static_cast<int>(n.source().begin.line);
+}
 
 } // namespace
 
@@ -122,7 +131,9 @@ void TableReader::failHere(const std::string& message) const {
   throw Error(message, {file_, lineOfNode(*table_), prefix_});
 }
 
-bool TableReader::has(std::string_view key) const { return table_->contains(key); }
+bool TableReader::has(std::string_view key) const {
+  return table_->contains(key);
+}
 
 std::vector<std::string> TableReader::keys() const {
   std::vector<std::string> out;
@@ -131,7 +142,9 @@ std::vector<std::string> TableReader::keys() const {
   return out;
 }
 
-void TableReader::mark(std::string_view key) const { record_->read.insert(path(key)); }
+void TableReader::mark(std::string_view key) const {
+  record_->read.insert(path(key));
+}
 
 const toml::node& TableReader::require(std::string_view key) const {
   const toml::node* n = table_->get(key);
@@ -290,7 +303,8 @@ const toml::node* TableReader::raw(std::string_view key) const {
 
 void TableReader::checkUnread(const toml::table& t, const std::string& prefix) const {
   for (const auto& [k, v] : t) {
-    const std::string p = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+    const std::string p =
+        prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     if (record_->whole.count(p))
       continue;
     if (!record_->read.count(p))
@@ -308,6 +322,8 @@ void TableReader::checkUnread(const toml::table& t, const std::string& prefix) c
   }
 }
 
-void TableReader::finish() const { checkUnread(*table_, prefix_); }
+void TableReader::finish() const {
+  checkUnread(*table_, prefix_);
+}
 
 } // namespace lamina::core

@@ -35,9 +35,9 @@ Stiffness transverselyIsotropic(double E1, double E2, double G12, double nu12, d
   s(1, 1) = s(2, 2) = 1 / E2;
   s(0, 1) = s(1, 0) = s(0, 2) = s(2, 0) = -nu12 / E1;
   s(1, 2) = s(2, 1) = -nu23 / E2;
-  s(3, 3) = 1 / G12;                  // xy
-  s(4, 4) = 2 * (1 + nu23) / E2;      // yz, the isotropic plane
-  s(5, 5) = 1 / G12;                  // xz
+  s(3, 3) = 1 / G12;             // xy
+  s(4, 4) = 2 * (1 + nu23) / E2; // yz, the isotropic plane
+  s(5, 5) = 1 / G12;             // xz
   return Stiffness(s.inverse()).symmetrized();
 }
 
@@ -89,7 +89,7 @@ Catalog::Catalog(const std::filesystem::path& path) : path_(path) {
         e.C = readMatrix(t, "C");
       } else {
         t.fail("law", "unknown law '" + e.law +
-                            "' (isotropic, transversely-isotropic, anisotropic, gvbo)");
+                          "' (isotropic, transversely-isotropic, anisotropic, gvbo)");
       }
       e.C.validate(name);
     } catch (const Error& err) {

@@ -22,14 +22,14 @@ namespace lamina::materials {
 
 /// One base material of the catalog.
 struct CatalogEntry {
-  std::string name;        ///< key in the catalog
-  std::string description; ///< one line for humans
-  std::string source;      ///< where the numbers come from
-  std::string law;         ///< "isotropic", "anisotropic" or "gvbo"
-  double density = 0;      ///< kg/m^3
-  Stiffness C;             ///< elastic stiffness (for gvbo: at J = 1, i.e. E0, nu0)
-  std::optional<GvboParameters> gvbo;       ///< GVBO parameters for law = "gvbo"
-  std::optional<double> nominal_thickness;  ///< m, where the source gives one
+  std::string name;                        ///< key in the catalog
+  std::string description;                 ///< one line for humans
+  std::string source;                      ///< where the numbers come from
+  std::string law;                         ///< "isotropic", "anisotropic" or "gvbo"
+  double density = 0;                      ///< kg/m^3
+  Stiffness C;                             ///< elastic stiffness (for gvbo: at J = 1, i.e. E0, nu0)
+  std::optional<GvboParameters> gvbo;      ///< GVBO parameters for law = "gvbo"
+  std::optional<double> nominal_thickness; ///< m, where the source gives one
   /// @return this entry as a library Material of kind "catalog"
   Material toMaterial() const;
 };

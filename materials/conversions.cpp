@@ -44,8 +44,12 @@ Matrix6 fromUpperByColumns(const std::array<double, 21>& v) {
 }
 } // namespace
 
-Matrix6 toVoigt(const Matrix6& l) { return permute(l, kVoigtFromLamina); }
-Matrix6 fromVoigt(const Matrix6& v) { return unpermute(v, kVoigtFromLamina); }
+Matrix6 toVoigt(const Matrix6& l) {
+  return permute(l, kVoigtFromLamina);
+}
+Matrix6 fromVoigt(const Matrix6& v) {
+  return unpermute(v, kVoigtFromLamina);
+}
 Matrix6 toMandel(const Matrix6& l) {
   return kMandelScale.asDiagonal() * toVoigt(l) * kMandelScale.asDiagonal();
 }
@@ -53,15 +57,25 @@ Matrix6 fromMandel(const Matrix6& m) {
   return fromVoigt(kMandelScale.cwiseInverse().asDiagonal() * m *
                    kMandelScale.cwiseInverse().asDiagonal());
 }
-Matrix6 toAbaqus(const Matrix6& l) { return permute(l, kAbaqusFromLamina); }
-Matrix6 fromAbaqus(const Matrix6& a) { return unpermute(a, kAbaqusFromLamina); }
+Matrix6 toAbaqus(const Matrix6& l) {
+  return permute(l, kAbaqusFromLamina);
+}
+Matrix6 fromAbaqus(const Matrix6& a) {
+  return unpermute(a, kAbaqusFromLamina);
+}
 
-std::array<double, 21> abaqusCardValues(const Matrix6& l) { return upperByColumns(toAbaqus(l)); }
+std::array<double, 21> abaqusCardValues(const Matrix6& l) {
+  return upperByColumns(toAbaqus(l));
+}
 Matrix6 fromAbaqusCardValues(const std::array<double, 21>& v) {
   return fromAbaqus(fromUpperByColumns(v));
 }
-std::array<double, 21> lsdynaCardValues(const Matrix6& l) { return upperByColumns(l); }
-Matrix6 fromLsdynaCardValues(const std::array<double, 21>& v) { return fromUpperByColumns(v); }
+std::array<double, 21> lsdynaCardValues(const Matrix6& l) {
+  return upperByColumns(l);
+}
+Matrix6 fromLsdynaCardValues(const std::array<double, 21>& v) {
+  return fromUpperByColumns(v);
+}
 
 Matrix6 mandelRotation(const Eigen::Matrix3d& R) {
   // Orthonormal basis of symmetric tensors in Mandel (Voigt) order.

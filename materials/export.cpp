@@ -132,7 +132,8 @@ nlohmann::json materialToJson(const Material& m) {
   if (!m.plies.empty()) {
     nlohmann::json plies = nlohmann::json::array();
     for (const Ply& p : m.plies)
-      plies.push_back({{"material", p.material}, {"angle_deg", p.angle_deg}, {"thickness", p.thickness}});
+      plies.push_back(
+          {{"material", p.material}, {"angle_deg", p.angle_deg}, {"thickness", p.thickness}});
     j["plies"] = plies;
   }
   if (!m.side_file.empty())
@@ -156,7 +157,8 @@ std::string exportCard(const Material& m, const std::string& format) {
     return lsdyna(m, false);
   if (format == "json")
     return materialToJson(m).dump(2) + "\n";
-  throw Error("unknown export format '" + format + "' (abaqus, calculix, lsdyna, lsdyna-small, json)",
+  throw Error("unknown export format '" + format +
+                  "' (abaqus, calculix, lsdyna, lsdyna-small, json)",
               {"--format", 0, format});
 }
 

@@ -11,10 +11,10 @@ namespace lamina::materials {
 
 /// The 15 GVBO parameters (chapter Table 1), SI units (Pa, 1/Pa, 1/s).
 struct GvboParameters {
-  double E0 = 0;  ///< initial Young's modulus (Pa)
-  double nu0 = 0; ///< initial Poisson ratio
-  double Et = 0;  ///< tangent modulus (Pa)
-  double p = 0;   ///< exponent of J in eq. (13)
+  double E0 = 0;         ///< initial Young's modulus (Pa)
+  double nu0 = 0;        ///< initial Poisson ratio
+  double Et = 0;         ///< tangent modulus (Pa)
+  double p = 0;          ///< exponent of J in eq. (13)
   double a1 = 0, a2 = 0; ///< shape function constants (Pa)
   double a3 = 0;         ///< shape function constant (1/Pa)
   double k1 = 0;         ///< viscosity constant (-)

@@ -13,7 +13,8 @@ double parseNumber(const std::string& s, const std::string& what, const std::str
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(v))
-    throw Error("ply " + what + " '" + s + "' is not a number (expected MATERIAL:ANGLE_DEG:THICKNESS_M)",
+    throw Error("ply " + what + " '" + s +
+                    "' is not a number (expected MATERIAL:ANGLE_DEG:THICKNESS_M)",
                 {"--ply", 0, text});
   return v;
 }

@@ -30,11 +30,21 @@ std::string quoteBasic(const std::string& s) {
   std::string out = "\"";
   for (unsigned char ch : s) {
     switch (ch) {
-    case '"': out += "\\\""; break;
-    case '\\': out += "\\\\"; break;
-    case '\n': out += "\\n"; break;
-    case '\t': out += "\\t"; break;
-    case '\r': out += "\\r"; break;
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    case '\n':
+      out += "\\n";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
+    case '\r':
+      out += "\\r";
+      break;
     default:
       if (ch < 0x20 || ch == 0x7f) {
         char buf[8];
@@ -48,7 +58,9 @@ std::string quoteBasic(const std::string& s) {
   return out + "\"";
 }
 
-std::string key(const std::string& k) { return isBareKey(k) ? k : quoteBasic(k); }
+std::string key(const std::string& k) {
+  return isBareKey(k) ? k : quoteBasic(k);
+}
 
 std::string stringValue(const std::string& s) {
   // Multi-line text (e.g. the input file that made an entry) as a literal
@@ -122,7 +134,8 @@ Material readEntry(const core::TableReader& t, const std::string& name) {
     m.thickness = t.getDouble("thickness");
   m.side_file = t.getString("side_file", "");
   for (const core::TableReader& p : t.tableArray("plies")) {
-    m.plies.push_back({p.getString("material"), p.getDouble("angle_deg"), p.getDouble("thickness")});
+    m.plies.push_back(
+        {p.getString("material"), p.getDouble("angle_deg"), p.getDouble("thickness")});
     if (!(m.plies.back().thickness > 0))
       p.fail("thickness", "ply thickness must be positive (m)");
   }
@@ -158,7 +171,9 @@ std::filesystem::path Library::resolvePath(const std::string& cli_path) {
          "library.toml";
 }
 
-Library::Library(std::filesystem::path path) : path_(std::move(path)) { reload(); }
+Library::Library(std::filesystem::path path) : path_(std::move(path)) {
+  reload();
+}
 
 void Library::reload() {
   entries_.clear();
@@ -245,8 +260,8 @@ const Material& Library::get(const std::string& name) const {
     std::string list;
     for (const auto& [k, v] : entries_)
       list += (list.empty() ? "" : ", ") + k;
-    throw Error("no material '" + name + "' in library " + path_.string() + " (it holds: " +
-                    (list.empty() ? std::string("nothing") : list) + ")",
+    throw Error("no material '" + name + "' in library " + path_.string() +
+                    " (it holds: " + (list.empty() ? std::string("nothing") : list) + ")",
                 {"", 0, name});
   }
   return it->second;

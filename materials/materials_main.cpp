@@ -97,8 +97,9 @@ int main(int argc, char** argv) {
                "Stiffness in Pa, lamina order [xx, yy, zz, xy, yz, xz], engineering shear."};
   app.require_subcommand(1);
   std::string libraryPath, catalogPath;
-  app.add_option("--library", libraryPath,
-                 "library file (default: $LAMINA_LIBRARY, else ~/.local/share/lamina/library.toml)");
+  app.add_option(
+      "--library", libraryPath,
+      "library file (default: $LAMINA_LIBRARY, else ~/.local/share/lamina/library.toml)");
   app.add_option("--catalog", catalogPath, "catalog file (default: the source tree's)");
 
   auto* list = app.add_subcommand("list", "list the library entries");
@@ -151,7 +152,8 @@ int main(int argc, char** argv) {
   try {
     const auto path = mat::Library::resolvePath(libraryPath);
     auto catalog = [&] {
-      return mat::Catalog(catalogPath.empty() ? mat::Catalog::defaultPath() : std::filesystem::path(catalogPath));
+      return mat::Catalog(catalogPath.empty() ? mat::Catalog::defaultPath()
+                                              : std::filesystem::path(catalogPath));
     };
     if (list->parsed()) {
       if (listCatalog) {

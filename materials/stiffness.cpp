@@ -17,8 +17,8 @@ Stiffness Stiffness::isotropic(double E, double nu) {
 
 Stiffness Stiffness::fromLame(double lambda, double mu) {
   LAMINA_CHECK(mu > 0 && 3 * lambda + 2 * mu > 0,
-               "Lame constants must give mu > 0 and a positive bulk modulus, got lambda = ",
-               lambda, ", mu = ", mu);
+               "Lame constants must give mu > 0 and a positive bulk modulus, got lambda = ", lambda,
+               ", mu = ", mu);
   Matrix6 c = Matrix6::Zero();
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j)
@@ -54,7 +54,9 @@ double Stiffness::asymmetry() const {
   return scale > 0 ? (c_ - c_.transpose()).cwiseAbs().maxCoeff() / scale : 0.0;
 }
 
-Stiffness Stiffness::symmetrized() const { return Stiffness(0.5 * (c_ + c_.transpose())); }
+Stiffness Stiffness::symmetrized() const {
+  return Stiffness(0.5 * (c_ + c_.transpose()));
+}
 
 double Stiffness::smallestEigenvalue() const {
   Eigen::SelfAdjointEigenSolver<Matrix6> es(0.5 * (c_ + c_.transpose()), Eigen::EigenvaluesOnly);
@@ -77,7 +79,9 @@ void Stiffness::validate(const std::string& name) const {
                 ctx);
 }
 
-Matrix6 Stiffness::compliance() const { return c_.inverse(); }
+Matrix6 Stiffness::compliance() const {
+  return c_.inverse();
+}
 
 EngineeringConstants Stiffness::engineering() const {
   const Matrix6 s = compliance();
@@ -136,9 +140,15 @@ Eigen::Matrix3d axisRotationDegrees(int axis, double degrees) {
   return axisRotation(axis, degrees * M_PI / 180.0);
 }
 
-Stiffness Stiffness::rotatedAboutZ(double radians) const { return rotated(axisRotation(2, radians)); }
-Stiffness Stiffness::rotatedAboutX(double radians) const { return rotated(axisRotation(0, radians)); }
-Stiffness Stiffness::rotatedAboutY(double radians) const { return rotated(axisRotation(1, radians)); }
+Stiffness Stiffness::rotatedAboutZ(double radians) const {
+  return rotated(axisRotation(2, radians));
+}
+Stiffness Stiffness::rotatedAboutX(double radians) const {
+  return rotated(axisRotation(0, radians));
+}
+Stiffness Stiffness::rotatedAboutY(double radians) const {
+  return rotated(axisRotation(1, radians));
+}
 
 // Averages in engineering (Voigt-type) notation: indices 0-2 normal, 3-5 shear,
 // which holds in lamina order as in standard Voigt order.

@@ -20,13 +20,20 @@
 namespace lamina::materials {
 
 /// The symmetry classes, from highest to lowest.
-enum class SymmetryClass { Isotropic, Cubic, TransverselyIsotropic, Orthotropic, Monoclinic, Triclinic };
+enum class SymmetryClass {
+  Isotropic,
+  Cubic,
+  TransverselyIsotropic,
+  Orthotropic,
+  Monoclinic,
+  Triclinic
+};
 
 /// Result of classify(): the class and, where it has one, the axis (0=x,1=y,2=z)
 /// of transverse isotropy or of the monoclinic two-fold axis (-1 otherwise).
 struct Symmetry {
-  SymmetryClass cls;
-  int axis = -1;
+  SymmetryClass cls; ///< the class
+  int axis = -1;     ///< axis of transverse isotropy or two-fold axis (0=x, 1=y, 2=z), -1 if none
 };
 
 /// Detects the symmetry class of @p c with relative tolerance @p tol.

@@ -90,6 +90,7 @@ struct Model {
   OutputSettings output;                            ///< outputs
   Eigen::VectorXd u0, v0;            ///< initial displacement and velocity (empty = zero)
   bool compare_without_drag = false; ///< run also without the drag and compare peaks
+  /// @return the number of degrees of freedom, 3 per node
   int numDofs() const { return 3 * mesh.numNodes(); }
 };
 

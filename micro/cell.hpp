@@ -60,7 +60,7 @@ struct CellSpec {
   std::array<int, 3> resolution{32, 32, 32};      ///< voxels along x, y, z
   Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths
   std::vector<Phase> phases;                      ///< phases[0] is the matrix
-  std::vector<InclusionGroup> groups;
+  std::vector<InclusionGroup> groups;             ///< inclusion groups, placed in order
 
   /// @return the index of the phase named @p name, -1 if none
   int phaseIndex(const std::string& name) const;

@@ -25,7 +25,7 @@ std::string toString(Shape s);
 
 /// One placed inclusion.
 struct Inclusion {
-  Shape shape = Shape::Sphere;
+  Shape shape = Shape::Sphere;                      ///< geometric shape
   int phase = 0;                                    ///< phase index it is made of
   Eigen::Vector3d center = Eigen::Vector3d::Zero(); ///< centre (a point on the axis / mid-plane)
   Eigen::Vector3d semi = Eigen::Vector3d::Ones();   ///< ellipsoid semi-axes (sphere: r, r, r)

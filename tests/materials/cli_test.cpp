@@ -206,7 +206,8 @@ std::vector<std::vector<double>> fixedFormatCards(const std::string& text, int w
 // format ("+" suffix) has 20-column fields, standard format 10 columns.
 TEST_F(MaterialsProgram, LsdynaCardFollowsManualOrder) {
   ASSERT_EQ(run("add t1 --from-catalog table1-anisotropic").status, 0);
-  for (const auto& [format, width] : {std::pair<std::string, int>{"lsdyna", 20}, {"lsdyna-small", 10}}) {
+  for (const auto& [format, width] :
+       {std::pair<std::string, int>{"lsdyna", 20}, {"lsdyna-small", 10}}) {
     const auto r = run("export t1 --format " + format);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find(width == 20 ? "*MAT_ANISOTROPIC_ELASTIC_TITLE+\n"
@@ -246,7 +247,8 @@ TEST_F(MaterialsProgram, CardsOfFullPrecisionConstantsFitTheirReaders) {
   for (int i = 0; i < 6; ++i)
     for (int j = i; j < 6; ++j)
       constants << (i || j ? "," : "") << c(i, j);
-  ASSERT_EQ(run("add full --constants " + constants.str() + " --density 1234.5678901234567").status, 0);
+  ASSERT_EQ(run("add full --constants " + constants.str() + " --density 1234.5678901234567").status,
+            0);
   const mat::Matrix6 stored = mat::Library(lib_).get("full").C.matrix();
   for (const auto& [format, width, tol] :
        {std::tuple<std::string, int, double>{"lsdyna", 20, 1e-12}, {"lsdyna-small", 10, 5e-3}}) {
@@ -254,11 +256,10 @@ TEST_F(MaterialsProgram, CardsOfFullPrecisionConstantsFitTheirReaders) {
     ASSERT_EQ(r.status, 0) << r.err;
     const auto cards = fixedFormatCards(r.out, width);
     ASSERT_GE(cards.size(), 3u);
-    const std::vector<double> v{cards[0][2], cards[0][3], cards[0][4], cards[0][5], cards[0][6],
-                                cards[0][7], cards[1][0], cards[1][1], cards[1][2], cards[1][3],
-                                cards[1][4], cards[1][5], cards[1][6], cards[1][7], cards[2][0],
-                                cards[2][1], cards[2][2], cards[2][3], cards[2][4], cards[2][5],
-                                cards[2][6]};
+    const std::vector<double> v{
+        cards[0][2], cards[0][3], cards[0][4], cards[0][5], cards[0][6], cards[0][7], cards[1][0],
+        cards[1][1], cards[1][2], cards[1][3], cards[1][4], cards[1][5], cards[1][6], cards[1][7],
+        cards[2][0], cards[2][1], cards[2][2], cards[2][3], cards[2][4], cards[2][5], cards[2][6]};
     const auto expected = mat::lsdynaCardValues(stored);
     for (std::size_t k = 0; k < 21; ++k)
       EXPECT_NEAR(v[k], expected[k], tol * std::abs(expected[k])) << format << " value #" << k + 1;

@@ -29,7 +29,8 @@ struct Result {
 };
 
 Result run(const std::string& command) {
-  const fs::path log = fs::temp_directory_path() / ("lamina_bad_input_" + std::to_string(::getpid()) + ".log");
+  const fs::path log =
+      fs::temp_directory_path() / ("lamina_bad_input_" + std::to_string(::getpid()) + ".log");
   const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
   std::ifstream in(log);
   std::stringstream ss;
@@ -50,7 +51,9 @@ void write(const fs::path& p, const std::string& text) {
   out << text;
 }
 
-bool have(const std::string& program) { return fs::exists(kBin / program); }
+bool have(const std::string& program) {
+  return fs::exists(kBin / program);
+}
 
 /// A fresh folder with a valid library holding one catalog entry.
 class BadInput : public ::testing::Test {
@@ -74,11 +77,11 @@ protected:
   }
   /// A small valid membrane case using the library's `vinyl`, with @p edit
   /// applied as extra text appended or replacing a line.
-  fs::path membraneCase(const std::string& sectionAndTime, const std::string& mesh =
-                                                              "[mesh]\ntype = \"rectangle\"\nLx = 1.0\nnx = 4\n") {
+  fs::path
+  membraneCase(const std::string& sectionAndTime,
+               const std::string& mesh = "[mesh]\ntype = \"rectangle\"\nLx = 1.0\nnx = 4\n") {
     const fs::path p = dir_ / "case.toml";
-    write(p, "name = \"bad\"\n" + mesh + sectionAndTime +
-                 "\n[[fixed]]\nnodes = \"edges\"\n");
+    write(p, "name = \"bad\"\n" + mesh + sectionAndTime + "\n[[fixed]]\nnodes = \"edges\"\n");
     return p;
   }
   Result membrane(const fs::path& casePath) {
@@ -112,8 +115,8 @@ TEST_F(BadInput, WrongTypeNamesKey) {
 
 TEST_F(BadInput, NegativeThicknessNamesKey) {
   ASSERT_TRUE(have("membrane")) << "membrane was not built";
-  const Result r = membrane(membraneCase(
-      "[[section]]\nmaterial = \"vinyl\"\nthickness = -6.0e-4\n" + kGoodTime));
+  const Result r = membrane(
+      membraneCase("[[section]]\nmaterial = \"vinyl\"\nthickness = -6.0e-4\n" + kGoodTime));
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("thickness"), std::string::npos) << r.output;
 }
@@ -121,7 +124,8 @@ TEST_F(BadInput, NegativeThicknessNamesKey) {
 TEST_F(BadInput, NonPositiveTimeStepNamesKey) {
   ASSERT_TRUE(have("membrane")) << "membrane was not built";
   for (const std::string dt : {"0.0", "-1.0e-6"}) {
-    const Result r = membrane(membraneCase(kGoodSection + "[time]\ndt = " + dt + "\nt_end = 1.0e-3\n"));
+    const Result r =
+        membrane(membraneCase(kGoodSection + "[time]\ndt = " + dt + "\nt_end = 1.0e-3\n"));
     EXPECT_NE(r.code, 0);
     EXPECT_NE(r.output.find("time.dt"), std::string::npos) << r.output;
   }
@@ -149,21 +153,21 @@ TEST_F(BadInput, MeshWithoutTrianglesNamesIt) {
   // A geometry with a curve and no surface: gmsh produces no triangle.
   write(dir_ / "wire.geo", "Point(1) = {0, 0, 0, 0.1};\nPoint(2) = {1, 0, 0, 0.1};\n"
                            "Line(1) = {1, 2};\nPhysical Curve(\"edge\") = {1};\n");
-  const Result r = membrane(membraneCase(kGoodSection + kGoodTime,
-                                         "[mesh]\ntype = \"gmsh\"\nfile = \"wire.geo\"\n"));
+  const Result r = membrane(
+      membraneCase(kGoodSection + kGoodTime, "[mesh]\ntype = \"gmsh\"\nfile = \"wire.geo\"\n"));
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("wire.geo"), std::string::npos) << r.output;
 }
 
 TEST_F(BadInput, UnknownMaterialNamesLibraryAndListsEntries) {
   ASSERT_TRUE(have("membrane")) << "membrane was not built";
-  const Result r = membrane(membraneCase(
-      "[[section]]\nmaterial = \"unobtainium\"\nthickness = 1.0e-3\n" + kGoodTime));
+  const Result r = membrane(
+      membraneCase("[[section]]\nmaterial = \"unobtainium\"\nthickness = 1.0e-3\n" + kGoodTime));
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("unobtainium"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find(library_.string()), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("vinyl"), std::string::npos) << "should list what the library holds: "
-                                                       << r.output;
+  EXPECT_NE(r.output.find("vinyl"), std::string::npos)
+      << "should list what the library holds: " << r.output;
 }
 
 TEST_F(BadInput, NotPositiveDefiniteConstantsAreRefused) {
@@ -217,9 +221,9 @@ TEST_F(BadInput, DivergingRunStopsWithTimeAndExitCode3) {
   // beta2 = 0, beta1 = 1/2 is the explicit central-difference scheme, stable
   // only for dt < h_el / c_P = 0.25 m / ~77 m/s ~ 3e-3 s for the vinyl (E = 5 MPa,
   // rho = 1133): at dt = 1 s the amplitude grows geometrically and overflows.
-  const fs::path p = membraneCase(
-      kGoodSection + "[time]\ndt = 1.0\nt_end = 5000.0\nbeta1 = 0.5\nbeta2 = 0.0\n" +
-      "\n[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n");
+  const fs::path p =
+      membraneCase(kGoodSection + "[time]\ndt = 1.0\nt_end = 5000.0\nbeta1 = 0.5\nbeta2 = 0.0\n" +
+                   "\n[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n");
   const Result r = membrane(p);
   EXPECT_EQ(r.code, 3) << r.output;
   EXPECT_NE(r.output.find("t ="), std::string::npos) << "should say when: " << r.output;
