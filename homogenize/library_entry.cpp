@@ -1,5 +1,7 @@
 #include "homogenize/library_entry.hpp"
 
+#include "materials/export.hpp"
+
 #include "core/error.hpp"
 
 #include <chrono>
@@ -114,14 +116,7 @@ nlohmann::json toJson(const EntryResult& e) {
   const Result& r = e.result;
   nlohmann::json j;
   j["name"] = e.name;
-  nlohmann::json C = nlohmann::json::array();
-  for (int a = 0; a < 6; ++a) {
-    nlohmann::json row = nlohmann::json::array();
-    for (int b = 0; b < 6; ++b)
-      row.push_back(r.C(a, b));
-    C.push_back(row);
-  }
-  j["C"] = C;
+  j["C"] = materials::matrixToJson(r.C.matrix());
   j["density"] = r.density;
   j["iterations"] = r.iterations();
   j["residual"] = r.maxResidual();

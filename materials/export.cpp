@@ -105,17 +105,21 @@ std::string lsdyna(const Material& m, bool large) {
 }
 } // namespace
 
-nlohmann::json materialToJson(const Material& m) {
-  nlohmann::json j;
-  j["name"] = m.name;
+nlohmann::json matrixToJson(const Matrix6& c) {
   nlohmann::json rows = nlohmann::json::array();
   for (int i = 0; i < 6; ++i) {
     nlohmann::json row = nlohmann::json::array();
     for (int k = 0; k < 6; ++k)
-      row.push_back(m.C(i, k));
+      row.push_back(c(i, k));
     rows.push_back(row);
   }
-  j["C"] = rows;
+  return rows;
+}
+
+nlohmann::json materialToJson(const Material& m) {
+  nlohmann::json j;
+  j["name"] = m.name;
+  j["C"] = matrixToJson(m.C.matrix());
   j["density"] = m.density;
   j["kind"] = m.kind;
   const Symmetry s = classify(m.C);

@@ -30,6 +30,10 @@ namespace lamina::materials {
 /// "lsdyna-small", "json"); throws lamina::Error for an unknown format.
 std::string exportCard(const Material& m, const std::string& format);
 
+/// @return a 6x6 matrix as 6 JSON rows of 6 numbers (the "C" of every JSON
+/// output: Pa, lamina order)
+nlohmann::json matrixToJson(const Matrix6& c);
+
 /// @return {"name", "C", "density", "kind", "symmetry", "symmetry_axis",
 /// "anisotropy_index", "engineering": {...}, "thickness", "plies",
 /// "provenance", "side_file"} (optional members only when present).
