@@ -6,20 +6,21 @@
 
 #include <CLI/CLI.hpp>
 
+#include <filesystem>
 #include <iostream>
 
 int main(int argc, char** argv) {
   using namespace lamina;
   CLI::App app{"lamina membrane solver (Newmark, linear triangles, 3 DOF per node)"};
   app.require_subcommand(1);
-  std::string case_path, out_dir = ".", library;
+  std::string case_path, out_dir, library;
   std::vector<std::string> overrides;
   bool json = false;
   int levels = 3, sample_every = 1;
 
   auto* run = app.add_subcommand("run", "run one case file");
   run->add_option("case", case_path, "case file (TOML)")->required();
-  run->add_option("--out", out_dir, "output folder");
+  run->add_option("--out", out_dir, "output folder (default: out/<case file stem>)");
   run->add_flag("--json", json, "print summary.json on stdout");
   run->add_option("--library", library, "materials library file");
   run->add_option("--set", overrides, "override a case key: --set time.dt=1e-7 (repeatable)")
@@ -45,6 +46,8 @@ int main(int argc, char** argv) {
     if (run->parsed()) {
       const auto model = membrane::readCase(case_path, overrides, sources);
       membrane::RunOptions opt;
+      if (out_dir.empty()) // never litter the working directory
+        out_dir = (std::filesystem::path("out") / std::filesystem::path(case_path).stem()).string();
       opt.out_dir = out_dir;
       opt.quiet = quiet;
       const auto summary = membrane::runCase(model, opt);
