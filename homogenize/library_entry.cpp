@@ -1,12 +1,14 @@
 #include "homogenize/library_entry.hpp"
 
 #include "materials/export.hpp"
+#include "micro/phase_map_io.hpp"
 
 #include "core/error.hpp"
 
 #include <chrono>
 #include <cstdio>
 #include <ctime>
+#include <filesystem>
 
 #ifndef LAMINA_VERSION
 #define LAMINA_VERSION "unknown"
@@ -104,7 +106,31 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
     EntryResult e{entryName(base, J, sweep), J, {}};
     Homogenizer h(gridOf(cell), cell.phase, spec.stiffnessesAt(J), spec.densities(), options);
     e.result = h.run();
-    library.add(makeEntry(e.name, spec, cell, e.result, options, J), overwrite);
+    materials::Material m = makeEntry(e.name, spec, cell, e.result, options, J);
+    // The phase map goes to an HDF5 side file beside the library (DESIGN.md:
+    // large arrays never enter the text file), written before the entry that
+    // names it so an entry never points at a missing file. Its path is stored
+    // relative to the library's folder.
+    const std::filesystem::path folder = library.path().parent_path();
+    const std::filesystem::path side =
+        std::filesystem::path(library.path().stem().string() + ".side") / (e.name + ".h5");
+    std::vector<std::string> names;
+    for (const auto& ph : spec.phases)
+      names.push_back(ph.name);
+    std::filesystem::create_directories((folder / side).parent_path());
+    const bool existed = std::filesystem::exists(folder / side);
+    micro::writePhaseMap(cell, names, folder / side);
+    m.side_file = side.string();
+    try {
+      library.add(m, overwrite);
+    } catch (...) {
+      if (existed) // --overwrite of an entry whose side file it was: keep it
+        throw;
+      std::error_code ec;
+      std::filesystem::remove(folder / side, ec);
+      std::filesystem::remove(std::filesystem::path(folder / side).replace_extension(".xdmf"), ec);
+      throw;
+    }
     if (report)
       report(e);
     out.push_back(std::move(e));

@@ -11,7 +11,7 @@ BIN="$BUILD/bin"
 PY=/usr/bin/python3
 LIB="$OUT/library.toml"
 cd "$ROOT"
-rm -rf "$OUT/runs" "$OUT/cells" "$LIB" "$LIB.lock"
+rm -rf "$OUT/runs" "$OUT/cells" "$LIB" "$LIB.lock" "$OUT/library.side"
 mkdir -p "$OUT/runs" "$OUT/cells" "$OUT/materials"
 start=$(date +%s)
 

@@ -7,6 +7,7 @@
 #include "homogenize/library_entry.hpp"
 #include "materials/library.hpp"
 #include "micro/cell.hpp"
+#include "micro/phase_map_io.hpp"
 #include "micro/unit_cell.hpp"
 
 #include <nlohmann/json.hpp>
@@ -211,6 +212,14 @@ TEST(Program, JsonInterface) {
   EXPECT_NEAR(c33 / c11, 1.0, 1e-9);
   EXPECT_NEAR(j["density"].get<double>(), 1100.0, 1e-9);
   EXPECT_TRUE(materials::Library(lib).contains("s8"));
+  // The phase map is in the side file the entry names (relative to the
+  // library's folder): 8^3 voxels, and its inclusion voxels give back the
+  // volume fraction the JSON reports.
+  const auto& entry = materials::Library(lib).get("s8");
+  ASSERT_FALSE(entry.side_file.empty());
+  const micro::UnitCell back = micro::readPhaseMap(dir / entry.side_file, 2);
+  EXPECT_EQ(back.phase.size(), 512u);
+  EXPECT_NEAR(back.voxel_fraction[1], j["volume_fraction"].get<double>(), 1e-15);
   std::filesystem::remove_all(dir);
 }
 
