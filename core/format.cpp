@@ -19,4 +19,11 @@ std::string formatShort(double x, int digits) {
   return buf;
 }
 
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names)
+    out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 } // namespace lamina::core

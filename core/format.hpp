@@ -3,6 +3,7 @@
 /// @brief Number formatting shared by every text output of lamina.
 
 #include <string>
+#include <vector>
 
 namespace lamina::core {
 
@@ -13,5 +14,8 @@ std::string formatExact(double x);
 
 /// Formats @p x with @p digits significant digits for humans ("%.*g").
 std::string formatShort(double x, int digits = 6);
+
+/// Joins @p names with ", " (for messages that list what a file holds).
+std::string joinNames(const std::vector<std::string>& names);
 
 } // namespace lamina::core

@@ -1,6 +1,7 @@
 #include "materials/catalog.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/toml_reader.hpp"
 
 #include <cstdlib>
@@ -111,13 +112,10 @@ std::vector<std::string> Catalog::names() const {
 
 const CatalogEntry& Catalog::get(const std::string& name) const {
   auto it = entries_.find(name);
-  if (it == entries_.end()) {
-    std::string list;
-    for (const auto& [k, v] : entries_)
-      list += (list.empty() ? "" : ", ") + k;
-    throw Error("no such material in catalog " + path_.string() + " (it holds: " + list + ")",
+  if (it == entries_.end())
+    throw Error("no such material in catalog " + path_.string() +
+                    " (it holds: " + core::joinNames(names()) + ")",
                 {"", 0, name});
-  }
   return it->second;
 }
 

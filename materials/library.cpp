@@ -257,9 +257,7 @@ std::vector<std::string> Library::names() const {
 const Material& Library::get(const std::string& name) const {
   auto it = entries_.find(name);
   if (it == entries_.end()) {
-    std::string list;
-    for (const auto& [k, v] : entries_)
-      list += (list.empty() ? "" : ", ") + k;
+    const std::string list = core::joinNames(names());
     throw Error("no material '" + name + "' in library " + path_.string() +
                     " (it holds: " + (list.empty() ? std::string("nothing") : list) + ")",
                 {"", 0, name});

@@ -7,6 +7,7 @@
 #include "materials/export.hpp"
 #include "materials/layup.hpp"
 #include "materials/library.hpp"
+#include "materials/material_source.hpp"
 #include "materials/symmetry.hpp"
 
 #include <CLI/CLI.hpp>
@@ -205,24 +206,16 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (layup->parsed()) {
-      mat::Library lib(path);
-      std::optional<mat::Catalog> cat;
       std::vector<mat::Ply> stack;
       for (const auto& p : plies)
         stack.push_back(mat::parsePly(p));
-      mat::Material m = mat::makeLayup(name, stack, [&](const std::string& n) -> mat::Material {
-        if (lib.contains(n))
-          return lib.get(n);
-        if (!cat)
-          cat.emplace(catalog());
-        if (cat->contains(n))
-          return cat->get(n).toMaterial();
-        lib.get(n); // throws, listing the library's entries
-        return {};
-      });
+      mat::MaterialSource source(path.string(), catalogPath);
+      mat::Material m =
+          mat::makeLayup(name, stack, [&](const std::string& n) { return source.get(n); });
       m.provenance.insert("tool", "materials layup");
       m.provenance.insert("version", LAMINA_VERSION);
       m.provenance.insert("time", nowIso());
+      mat::Library lib(path);
       lib.add(m, overwrite);
       std::cerr << "added layup '" << name << "' (" << stack.size() << " plies, "
                 << lamina::core::formatShort(*m.thickness) << " m) to " << path.string() << "\n";

@@ -1,5 +1,7 @@
 #include "membrane/case_file.hpp"
 
+#include "materials/material_source.hpp"
+
 #include "core/error.hpp"
 #include "core/toml_reader.hpp"
 #include "materials/catalog.hpp"
@@ -18,56 +20,18 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 /// Lazily opened material sources (a case with inline materials needs neither).
-class MaterialResolver {
-public:
-  explicit MaterialResolver(const MaterialSources& s) : sources_(s) {}
-
-  materials::Material get(const std::string& name, const core::TableReader& r,
-                          const std::string& key) {
-    auto& lib = library();
-    if (lib.contains(name))
-      return lib.get(name);
-    auto* cat = catalog();
-    if (cat && cat->contains(name)) {
-      const auto& entry = cat->get(name);
-      auto m = entry.toMaterial();
-      if (!m.thickness)
-        m.thickness = entry.nominal_thickness; // default section thickness
-      return m;
-    }
-    std::string have;
-    for (const auto& n : lib.names())
-      have += (have.empty() ? "" : ", ") + n;
-    std::string cat_have;
-    if (cat)
-      for (const auto& n : cat->names())
-        cat_have += (cat_have.empty() ? "" : ", ") + n;
-    r.fail(key, "unknown material '" + name + "': library " + lib.path().string() + " has [" +
-                    have + "]" + (cat ? "; catalog has [" + cat_have + "]" : ""));
+/// Looks a material up for the case (library, then catalog) and blames a
+/// miss on the case file's key.
+materials::Material lookupMaterial(materials::MaterialSource& source, const std::string& name,
+                                   const core::TableReader& r, const std::string& key) {
+  try {
+    return source.get(name);
+  } catch (const Error& e) {
+    if (!e.context().file.empty())
+      throw; // a broken library or catalog file: its own file and line
+    r.fail(key, e.message());
   }
-
-private:
-  materials::Library& library() {
-    if (!library_)
-      library_ = std::make_unique<materials::Library>(
-          materials::Library::resolvePath(sources_.library_path));
-    return *library_;
-  }
-  materials::Catalog* catalog() {
-    if (!catalog_tried_) {
-      catalog_tried_ = true;
-      const auto p = sources_.catalog_path.empty() ? materials::Catalog::defaultPath()
-                                                   : std::filesystem::path(sources_.catalog_path);
-      if (std::filesystem::exists(p))
-        catalog_ = std::make_unique<materials::Catalog>(p);
-    }
-    return catalog_.get();
-  }
-  MaterialSources sources_;
-  std::unique_ptr<materials::Library> library_;
-  std::unique_ptr<materials::Catalog> catalog_;
-  bool catalog_tried_ = false;
-};
+}
 
 Eigen::Vector2d readPoint(const core::TableReader& r, const std::string& key) {
   const auto v = r.getDoubleArray(key);
@@ -251,7 +215,7 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
 }
 
 /// Reads one [[section]]: material by name, inline isotropic/anisotropic, or plies.
-Section readSection(const core::TableReader& r, MaterialResolver& res) {
+Section readSection(const core::TableReader& r, materials::MaterialSource& res) {
   Section s;
   std::optional<double> default_thickness;
   const bool by_name = r.has("material"), iso = r.has("E"), aniso = r.has("C"),
@@ -260,7 +224,7 @@ Section readSection(const core::TableReader& r, MaterialResolver& res) {
     r.failHere("give exactly one of material, E (with nu, density), C (with density), plies");
   if (by_name) {
     s.material = r.getString("material");
-    const auto m = res.get(s.material, r, "material");
+    const auto m = lookupMaterial(res, s.material, r, "material");
     s.D = m.C.matrix();
     s.density = m.density;
     default_thickness = m.thickness;
@@ -297,8 +261,9 @@ Section readSection(const core::TableReader& r, MaterialResolver& res) {
     }
     materials::Material m;
     try {
-      m = materials::makeLayup("case layup", plies,
-                               [&](const std::string& n) { return res.get(n, r, "plies"); });
+      m = materials::makeLayup("case layup", plies, [&](const std::string& n) {
+        return lookupMaterial(res, n, r, "plies");
+      });
     } catch (const Error& e) {
       if (!e.context().file.empty())
         throw;
@@ -371,7 +336,7 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   const int ndof = 3 * n;
 
   // Sections: one per region; a section without `region` covers every region left.
-  MaterialResolver resolver(sources);
+  materials::MaterialSource resolver(sources.library_path, sources.catalog_path);
   model.sections.assign(mesh.regions.size(), Section{});
   std::vector<bool> assigned(mesh.regions.size(), false);
   const auto sections = root.tableArray("section");

@@ -1,0 +1,40 @@
+#pragma once
+/// @file material_source.hpp
+/// @brief Finding a material by name where users keep them: the library
+/// first, then the catalog of base materials.
+
+#include "materials/catalog.hpp"
+#include "materials/library.hpp"
+
+#include <filesystem>
+#include <memory>
+#include <string>
+
+namespace lamina::materials {
+
+/// The library and the catalog, each loaded on first use. Contract: get()
+/// returns the library entry of that name if there is one (the library
+/// wins), else the catalog entry as a Material carrying the catalog's
+/// nominal thickness (if any) as its thickness; otherwise it throws
+/// lamina::Error naming the library path and listing what both hold.
+class MaterialSource {
+public:
+  /// @param library library file (Library::resolvePath is applied to it)
+  /// @param catalog catalog file; empty: Catalog::defaultPath(). A catalog
+  ///        file that does not exist is treated as an empty catalog.
+  explicit MaterialSource(const std::string& library, const std::string& catalog = "");
+
+  /// @return the material named @p name (see the class contract)
+  Material get(const std::string& name);
+  /// @return the library (loaded now if not yet)
+  const Library& library();
+
+private:
+  const Catalog* catalog();
+  std::filesystem::path library_path_, catalog_path_;
+  std::unique_ptr<Library> library_;
+  std::unique_ptr<Catalog> catalog_;
+  bool catalog_tried_ = false;
+};
+
+} // namespace lamina::materials
