@@ -29,6 +29,16 @@ std::string typeName(const toml::node& n) {
   }
 }
 
+// A TOML number as a double: floats as they are, integers converted (a
+// case file may write `nx = 4` or `E = 1e9` for any number).
+std::optional<double> numberOf(const toml::node& n) {
+  if (auto v = n.value_exact<double>())
+    return *v;
+  if (auto v = n.value_exact<std::int64_t>())
+    return static_cast<double>(*v);
+  return std::nullopt;
+}
+
 int lineOfNode(const toml::node& n) {
   return static_cast<int>(n.source().begin.line);
 }
@@ -156,10 +166,8 @@ const toml::node& TableReader::require(std::string_view key) const {
 
 double TableReader::getDouble(std::string_view key) const {
   const toml::node& n = require(key);
-  if (auto v = n.value_exact<double>())
+  if (auto v = numberOf(n))
     return *v;
-  if (auto v = n.value_exact<std::int64_t>())
-    return static_cast<double>(*v);
   fail(key, "expected a number, got " + typeName(n));
 }
 
@@ -205,10 +213,8 @@ std::vector<double> TableReader::getDoubleArray(std::string_view key) const {
     fail(key, "expected an array of numbers, got " + typeName(n));
   std::vector<double> out;
   for (const toml::node& e : *a) {
-    if (auto v = e.value_exact<double>())
+    if (auto v = numberOf(e))
       out.push_back(*v);
-    else if (auto iv = e.value_exact<std::int64_t>())
-      out.push_back(static_cast<double>(*iv));
     else
       fail(key, "expected an array of numbers, found a " + typeName(e));
   }
@@ -242,10 +248,8 @@ std::vector<std::vector<double>> TableReader::getMatrix(std::string_view key) co
       fail(key, "expected an array of rows, found a " + typeName(row));
     std::vector<double> values;
     for (const toml::node& e : *r) {
-      if (auto v = e.value_exact<double>())
+      if (auto v = numberOf(e))
         values.push_back(*v);
-      else if (auto iv = e.value_exact<std::int64_t>())
-        values.push_back(static_cast<double>(*iv));
       else
         fail(key, "expected numbers in every row, found a " + typeName(e));
     }

@@ -18,22 +18,24 @@ int main(int argc, char** argv) {
   bool json = false;
   int levels = 3, sample_every = 1;
 
+  // The options both commands share: the case file, the library, --set, --json.
+  auto addCaseOptions = [&](CLI::App* cmd, const std::string& case_help,
+                            const std::string& json_help) {
+    cmd->add_option("case", case_path, case_help)->required();
+    cmd->add_flag("--json", json, json_help);
+    cmd->add_option("--library", library, "materials library file");
+    cmd->add_option("--set", overrides, "override a case key: --set time.dt=1e-7 (repeatable)")
+        ->allow_extra_args(false); // one value per flag, so a positional may follow
+  };
+
   auto* run = app.add_subcommand("run", "run one case file");
-  run->add_option("case", case_path, "case file (TOML)")->required();
+  addCaseOptions(run, "case file (TOML)", "print summary.json on stdout");
   run->add_option("--out", out_dir, "output folder (default: out/<case file stem>)");
-  run->add_flag("--json", json, "print summary.json on stdout");
-  run->add_option("--library", library, "materials library file");
-  run->add_option("--set", overrides, "override a case key: --set time.dt=1e-7 (repeatable)")
-      ->allow_extra_args(false); // one value per flag, so a positional may follow
 
   auto* conv = app.add_subcommand("converge", "convergence study (paper section 4)");
-  conv->add_option("case", case_path, "case file (TOML, structured mesh)")->required();
+  addCaseOptions(conv, "case file (TOML, structured mesh)", "print the rates as JSON");
   conv->add_option("--levels", levels, "number of grids (>= 3)")->required();
   conv->add_option("--sample-every", sample_every, "compare every n-th coarse step");
-  conv->add_flag("--json", json, "print the rates as JSON");
-  conv->add_option("--library", library, "materials library file");
-  conv->add_option("--set", overrides, "override a case key (repeatable)")
-      ->allow_extra_args(false); // one value per flag, so a positional may follow
 
   try {
     app.parse(argc, argv);
