@@ -10,7 +10,7 @@
 /// over samples, Linf as the maximum) give the observed rate as the negated
 /// least-squares slope of log2(difference) against k (Table 3).
 
-#include "membrane/case_file.hpp"
+#include "membrane/io/case_file.hpp"
 
 #include <nlohmann/json.hpp>
 

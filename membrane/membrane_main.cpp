@@ -1,7 +1,7 @@
 // The `membrane` program: thin CLI over lamina::membrane (run, converge).
 #include "core/error.hpp"
-#include "membrane/case_file.hpp"
 #include "membrane/converge.hpp"
+#include "membrane/io/case_file.hpp"
 #include "membrane/run.hpp"
 
 #include <CLI/CLI.hpp>

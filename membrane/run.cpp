@@ -4,7 +4,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/progress.hpp"
-#include "membrane/output.hpp"
+#include "membrane/io/output.hpp"
 #include "membrane/simulation.hpp"
 
 #include <chrono>
@@ -187,11 +187,10 @@ private:
       reac[model_.constraints[k].name] = {{"peak", peak_reaction_[k]},
                                           {"final", {sums[k][0], sums[k][1], sums[k][2]}}};
     s["reactions"] = reac;
-    s["solver"] = {{"type", model_.time.solver},
-                   {"mean_iterations",
-                    sim.solver().solves()
-                        ? double(sim.solver().totalIterations()) / double(sim.solver().solves())
-                        : 0.0}};
+    const SolverStats st = sim.integrator().stats();
+    s["solver"] = {
+        {"type", model_.time.solver},
+        {"mean_iterations", st.solves ? double(st.iterations) / double(st.solves) : 0.0}};
     s["wall_s"] = wall_s_;
     s["assembly_s"] = sim.assemblySeconds();
     s["factor_s"] = sim.setupSeconds();

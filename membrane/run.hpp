@@ -9,7 +9,7 @@
 /// state is written, summary.json records the message and
 /// lamina::DivergenceError is rethrown (exit code 3).
 
-#include "membrane/model.hpp"
+#include "membrane/model/model.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,8 +1,8 @@
 // Element and assembly: patch test, rigid motions, isotropic decoupling.
 #include "helpers.hpp"
-#include "membrane/assembly.hpp"
-#include "membrane/block_matrix.hpp"
-#include "membrane/mesh.hpp"
+#include "membrane/integrators/block_matrix.hpp"
+#include "membrane/model/assembly.hpp"
+#include "membrane/model/mesh.hpp"
 
 #include <gtest/gtest.h>
 

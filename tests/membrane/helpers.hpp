@@ -4,7 +4,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/toml_reader.hpp"
-#include "membrane/case_file.hpp"
+#include "membrane/io/case_file.hpp"
 #include "membrane/simulation.hpp"
 
 #include <algorithm>

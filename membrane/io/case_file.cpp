@@ -1,4 +1,4 @@
-#include "membrane/case_file.hpp"
+#include "membrane/io/case_file.hpp"
 
 #include "materials/material_source.hpp"
 

@@ -6,8 +6,8 @@
 /// DOF numbering: node-major, dof = 3 * node + c with c = 0 (u), 1 (v), 2 (w).
 /// Strain in lamina order eps = [u_x, v_y, 0, u_y + v_x, w_y, w_x] (eqs. 12-14).
 
-#include "materials/stiffness.hpp"
-#include "membrane/mesh.hpp"
+#include "membrane/model/mesh.hpp"
+#include "membrane/model/section.hpp"
 
 #include <Eigen/Sparse>
 
@@ -21,15 +21,6 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
 using Matrix69 = Eigen::Matrix<double, 6, 9>;
 /// 9 x 9 element matrix.
 using Matrix9 = Eigen::Matrix<double, 9, 9>;
-
-/// Material of one region as the solver needs it.
-struct Section {
-  std::string name;     ///< region name
-  std::string material; ///< where D came from (for the summary)
-  materials::Matrix6 D; ///< 6x6 stiffness, lamina order, Pa
-  double density = 0;   ///< kg/m^3
-  double thickness = 0; ///< m
-};
 
 /// B of eqs. (12)-(14) for triangle @p e (constant over the element).
 Matrix69 strainMatrix(const Mesh& mesh, int e);

@@ -1,4 +1,4 @@
-#include "membrane/step_solver.hpp"
+#include "membrane/integrators/step_solver.hpp"
 
 #include "core/error.hpp"
 

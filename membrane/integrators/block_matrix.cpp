@@ -1,4 +1,4 @@
-#include "membrane/block_matrix.hpp"
+#include "membrane/integrators/block_matrix.hpp"
 
 #include "core/error.hpp"
 

@@ -1,4 +1,4 @@
-#include "membrane/assembly.hpp"
+#include "membrane/model/assembly.hpp"
 
 #include <algorithm>
 

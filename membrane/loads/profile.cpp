@@ -1,4 +1,4 @@
-#include "membrane/profile.hpp"
+#include "membrane/loads/profile.hpp"
 
 #include <algorithm>
 #include <cmath>

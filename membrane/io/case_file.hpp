@@ -8,7 +8,7 @@
 /// the file, line and key. Materials named in the case are looked up in the
 /// materials library first, then in the catalog (the library wins).
 
-#include "membrane/model.hpp"
+#include "membrane/model/model.hpp"
 
 #include <toml++/toml.h>
 

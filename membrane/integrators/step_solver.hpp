@@ -16,8 +16,8 @@
 /// right-hand sides", 1998): the best combination of past steps in the A
 /// norm, which contains any polynomial extrapolation of them.
 
-#include "membrane/assembly.hpp"
-#include "membrane/block_matrix.hpp"
+#include "membrane/integrators/block_matrix.hpp"
+#include "membrane/model/assembly.hpp"
 
 #include <Eigen/Dense>
 

@@ -1,4 +1,4 @@
-#include "membrane/mesh.hpp"
+#include "membrane/model/mesh.hpp"
 
 #include "core/error.hpp"
 

@@ -10,8 +10,8 @@
 /// place by close().
 
 #include "core/hdf5_file.hpp"
-#include "membrane/assembly.hpp"
-#include "membrane/mesh.hpp"
+#include "membrane/model/assembly.hpp"
+#include "membrane/model/mesh.hpp"
 
 #include <Eigen/Dense>
 

@@ -6,11 +6,14 @@
 /// case_file.hpp, or directly by tests.
 ///
 /// Units SI. Forces are nodal force vectors of length 3 * nodes (N), the
-/// DOF numbering of assembly.hpp.
+/// DOF numbering of assembly.hpp. The pieces live by kind: the mesh, sections
+/// and constraints in model/, the loads in loads/.
 
-#include "membrane/assembly.hpp"
-#include "membrane/mesh.hpp"
-#include "membrane/profile.hpp"
+#include "membrane/loads/drag.hpp"
+#include "membrane/loads/load.hpp"
+#include "membrane/model/constraint.hpp"
+#include "membrane/model/mesh.hpp"
+#include "membrane/model/section.hpp"
 
 #include <Eigen/Dense>
 
@@ -18,32 +21,6 @@
 #include <vector>
 
 namespace lamina::membrane {
-
-/// A load F(t) = profile(t) * pattern.
-struct Load {
-  std::string name;        ///< for messages and the summary
-  Eigen::VectorXd pattern; ///< nodal forces at profile value 1 (N)
-  TimeProfile profile;     ///< time factor
-};
-
-/// A set of constrained DOFs moving with prescribed velocity
-/// v_dof(t) = amplitude_dof * profile(t) (zero amplitude = fixed).
-struct Constraint {
-  std::string name;              ///< boundary set name (reactions are summed per set)
-  std::vector<int> dofs;         ///< constrained DOFs
-  std::vector<double> amplitude; ///< velocity amplitude per DOF (m/s)
-  TimeProfile profile;           ///< time factor of the velocity
-};
-
-/// Aerodynamic drag on the nodes of a surface region (drag paper eqs. 1-3):
-/// F_i = -1/2 rho_f C_d A_i |V_i| V_n,i n along the normal n = e_z.
-struct Drag {
-  std::vector<int> nodes;       ///< nodes of the region
-  std::vector<double> area;     ///< tributary area of each node in the region (m^2)
-  double cd = 1.0;              ///< drag (or pressure) coefficient
-  double fluid_density = 1.225; ///< kg/m^3 (air)
-  bool resultant = false;       ///< |V| = resultant speed (true) or normal speed (false)
-};
 
 /// A named probe: the node nearest to a point.
 struct Probe {

@@ -1,4 +1,4 @@
-#include "membrane/output.hpp"
+#include "membrane/io/output.hpp"
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"

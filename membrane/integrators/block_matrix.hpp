@@ -15,7 +15,7 @@
 /// blocks in node order (what assemble() produces); values are copied, so
 /// later changes of the CSR matrix are not seen.
 
-#include "membrane/assembly.hpp"
+#include "membrane/model/assembly.hpp"
 
 #include <Eigen/Dense>
 

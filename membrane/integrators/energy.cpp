@@ -1,0 +1,28 @@
+#include "membrane/integrators/energy.hpp"
+
+namespace lamina::membrane {
+
+void Works::add(const Eigen::VectorXd& du, const StateForces& f0, const StateForces& f1,
+                const ConstrainedDofs& cons, bool has_external, bool has_drag) {
+  if (has_external)
+    external += 0.5 * du.dot(f0.external + f1.external);
+  if (has_drag)
+    drag += 0.5 * du.dot(f0.drag + f1.drag);
+  for (size_t k = 0; k < cons.size(); ++k) {
+    const auto i = static_cast<Eigen::Index>(k);
+    reaction += 0.5 * du[cons.dofs()[k]] * (f0.reaction[i] + f1.reaction[i]);
+  }
+}
+
+Energy Works::energy(double T, double U, double e0) const {
+  Energy e;
+  e.kinetic = T;
+  e.strain = U;
+  e.external_work = external;
+  e.reaction_work = reaction;
+  e.drag_work = drag;
+  e.balance = T + U - e0 - external - reaction - drag;
+  return e;
+}
+
+} // namespace lamina::membrane

@@ -1,0 +1,240 @@
+#include "membrane/integrators/newmark.hpp"
+
+#include "core/error.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace lamina::membrane {
+
+namespace {
+/// Rows @p rows of @p A as an |rows| x cols matrix.
+SparseMatrix extractRows(const SparseMatrix& A, const std::vector<int>& rows) {
+  SparseMatrix R(static_cast<Eigen::Index>(rows.size()), A.cols());
+  std::vector<Eigen::Triplet<double>> t;
+  for (size_t k = 0; k < rows.size(); ++k)
+    for (SparseMatrix::InnerIterator it(A, rows[k]); it; ++it)
+      t.emplace_back(static_cast<int>(k), static_cast<int>(it.col()), it.value());
+  R.setFromTriplets(t.begin(), t.end());
+  return R;
+}
+
+const SparseMatrix& requireStiffness(const Structure& s) {
+  if (!s.stiffness())
+    throw Error("the Newmark scheme needs the linear model (a constant stiffness K); "
+                "use time.integrator = \"explicit\" for the large-deflection model");
+  return *s.stiffness();
+}
+} // namespace
+
+Newmark::Newmark(const Model& model, const Structure& structure, const LoadSet& loads,
+                 const ConstrainedDofs& cons)
+    : model_(model), structure_(structure), loads_(loads), cons_(cons),
+      K_(requireStiffness(structure)) {
+  const auto& ts = model.time;
+  LAMINA_CHECK(ts.dt > 0, "time step must be > 0");
+  LAMINA_CHECK(ts.beta1 > 0, "beta1 must be > 0");
+  const int ndof = structure.numDofs();
+  const auto t0 = std::chrono::steady_clock::now();
+  // eq. (30): A = M + tau^2/2 beta2 K (HHT: times 1 + alpha on K).
+  c_ = 0.5 * ts.dt * ts.dt * ts.beta2;
+  SparseMatrix A = structure.mass(); // local: the solver keeps its own copy or factor
+  {
+    const double ck = c_ * (1 + ts.hht_alpha);
+    const Eigen::Index nnz = A.nonZeros();
+    double* av = A.valuePtr();
+    const double* kv = K_.valuePtr();
+    for (Eigen::Index k = 0; k < nnz; ++k)
+      av[k] += ck * kv[k];
+  }
+  const auto& constrained = cons.mask();
+  // Constrained rows/columns of A -> identity; the columns move to Afc so a
+  // non-zero prescribed acceleration still reaches the free rows.
+  {
+    std::vector<Eigen::Triplet<double>> fc;
+    for (int i = 0; i < ndof; ++i)
+      for (SparseMatrix::InnerIterator it(A, i); it; ++it) {
+        const int j = static_cast<int>(it.col());
+        if (constrained[i]) {
+          it.valueRef() = (i == j) ? 1.0 : 0.0;
+        } else if (constrained[j]) {
+          fc.emplace_back(i, j, it.value());
+          it.valueRef() = 0.0;
+        }
+      }
+    Afc_.resize(ndof, ndof);
+    Afc_.setFromTriplets(fc.begin(), fc.end());
+  }
+  Kb_ = BlockMatrix(K_);
+  Kc_ = extractRows(K_, cons.dofs());
+  Mc_ = extractRows(structure.mass(), cons.dofs());
+  solver_ =
+      std::make_unique<StepSolver>(A, ts.solver, ts.tolerance, ts.max_iterations, ts.projection);
+  setup_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Newmark::~Newmark() = default;
+
+void Newmark::init(State& s) {
+  const auto& ts = model_.time;
+  const int ndof = structure_.numDofs();
+  cur_.external = Eigen::VectorXd::Zero(ndof);
+  cur_.drag = Eigen::VectorXd::Zero(ndof);
+  loads_.external(s.t, s.u, cur_.external);
+  if (loads_.hasDrag())
+    loads_.drag(s.u, s.v, cur_.drag);
+  // Consistent initial acceleration: M a_0 = F_0 + Fd_0 - K u_0 on the free
+  // DOFs, a_0 = 0 on the constrained ones.
+  s.a = Eigen::VectorXd::Zero(ndof);
+  multiply(K_, s.u, ku_);
+  b_ = cur_.external + cur_.drag - ku_;
+  for (int d : cons_.dofs())
+    b_[d] = 0;
+  if (b_.norm() > 0) {
+    const auto& constrained = cons_.mask();
+    SparseMatrix Mf = structure_.mass();
+    for (int i = 0; i < ndof; ++i)
+      for (SparseMatrix::InnerIterator it(Mf, i); it; ++it)
+        if (constrained[i] || constrained[it.col()])
+          it.valueRef() = (i == it.col()) ? 1.0 : 0.0;
+    StepSolver ms(Mf, ts.solver, std::min(ts.tolerance, 1e-13), ts.max_iterations);
+    ms.solve(b_, s.a);
+  }
+  a_prev_ = s.a;
+  cur_.reaction.resize(static_cast<Eigen::Index>(cons_.size()));
+  reactions(s, cur_, cur_.reaction);
+  prev_ = cur_;
+  next_ = cur_;
+  du_ = Eigen::VectorXd::Zero(ndof);
+  ac_ = Eigen::VectorXd::Zero(ndof);
+}
+
+void Newmark::reactions(const State& s, const StateForces& f, Eigen::VectorXd& r) const {
+  // R = M a + K u - F - F_drag at the constrained DOFs.
+  if (cons_.empty())
+    return;
+  r = Mc_ * s.a + Kc_ * s.u;
+  for (size_t k = 0; k < cons_.size(); ++k) {
+    const int d = cons_.dofs()[k];
+    r[static_cast<Eigen::Index>(k)] -= f.external[d] + f.drag[d];
+  }
+}
+
+void Newmark::divergedInSolve(const State& s, const DivergenceError& e, double t1) const {
+  // Name the time and the node moving most in the last finite state.
+  int worst = 0;
+  double big = -1;
+  for (int i = 0; i < structure_.numDofs() / 3; ++i) {
+    const double m = s.u.segment<3>(3 * i).norm() + s.v.segment<3>(3 * i).norm();
+    if (!(m <= big)) {
+      big = m;
+      worst = i;
+    }
+  }
+  const auto& p = model_.mesh.nodes[worst];
+  std::ostringstream os;
+  os << e.message() << " at t = " << t1 << " s (step " << s.step + 1 << "), largest motion at node "
+     << worst << " (" << p.x() << ", " << p.y() << ")";
+  throw DivergenceError(os.str());
+}
+
+void Newmark::nonFinite(const State& s, double t1) const {
+  int bad = 0;
+  for (int i = 0; i < structure_.numDofs(); ++i)
+    if (!std::isfinite(u1_[i]) || !std::isfinite(v1_[i]) || !std::isfinite(a1_[i])) {
+      bad = i / 3;
+      break;
+    }
+  const auto& p = model_.mesh.nodes[bad];
+  std::ostringstream os;
+  os << "non-finite state at t = " << t1 << " s (step " << s.step + 1 << "), node " << bad
+     << " at (" << p.x() << ", " << p.y() << ")";
+  throw DivergenceError(os.str());
+}
+
+void Newmark::step(State& s) {
+  const auto& ts = model_.time;
+  const double tau = ts.dt, alpha = ts.hht_alpha;
+  const double t1 = static_cast<double>(s.step + 1) * tau;
+  const bool has_drag = loads_.hasDrag();
+
+  // Predictors of eq. (30).
+  ut_ = s.u + tau * s.v + (0.5 * tau * tau * (1 - ts.beta2)) * s.a;
+  vt_ = s.v + (tau * (1 - ts.beta1)) * s.a;
+  if (loads_.hasExternal())
+    loads_.external(t1, ut_, next_.external);
+  Kb_.multiply(ut_, ku_);
+  // Right-hand side without drag: (1+alpha)(F1 - K u~) - alpha (F_n + Fd_n - K u_n).
+  b_ = (1 + alpha) * (next_.external - ku_);
+  if (alpha != 0) {
+    multiply(K_, s.u, tmp_);
+    b_ -= alpha * (cur_.external + cur_.drag - tmp_);
+  }
+  // Prescribed accelerations so that v_{n+1} hits the prescribed velocity.
+  bool moving_acc = false;
+  for (size_t k = 0; k < cons_.size(); ++k) {
+    const int d = cons_.dofs()[k];
+    ac_[d] = (cons_.velocity(k, t1) - vt_[d]) / (ts.beta1 * tau);
+    if (ac_[d] != 0)
+      moving_acc = true;
+  }
+  if (moving_acc)
+    b_ -= Afc_ * ac_;
+
+  // Warm start: linear extrapolation of the acceleration history.
+  a1_ = 2 * s.a - a_prev_;
+  last_iterations_ = 0;
+  const int passes = has_drag ? ts.drag_iterations : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    tmp_ = b_;
+    if (has_drag) {
+      v1_ = vt_ + (ts.beta1 * tau) * a1_;
+      loads_.drag(ut_, v1_, next_.drag);
+      tmp_ += (1 + alpha) * next_.drag;
+    }
+    for (int d : cons_.dofs())
+      tmp_[d] = ac_[d];
+    Eigen::VectorXd previous;
+    if (has_drag)
+      previous = a1_;
+    try {
+      last_iterations_ += solver_->solve(tmp_, a1_);
+    } catch (const DivergenceError& e) {
+      divergedInSolve(s, e, t1);
+    }
+    if (!has_drag)
+      break;
+    if ((a1_ - previous).norm() <= ts.drag_tolerance * (a1_.norm() + 1e-300))
+      break;
+  }
+  if (has_drag) {
+    // Drag consistent with the final a_{n+1}, as used in the balance.
+    v1_ = vt_ + (ts.beta1 * tau) * a1_;
+    loads_.drag(ut_, v1_, next_.drag);
+  }
+  u1_ = ut_ + c_ * a1_;
+  v1_ = vt_ + (ts.beta1 * tau) * a1_;
+
+  // Non-finite state: stop before committing it.
+  if (!u1_.allFinite() || !v1_.allFinite() || !a1_.allFinite())
+    nonFinite(s, t1);
+
+  // Commit.
+  du_ = u1_ - s.u;
+  a_prev_ = s.a;
+  std::swap(s.u, u1_);
+  std::swap(s.v, v1_);
+  std::swap(s.a, a1_);
+  s.t = t1;
+  ++s.step;
+  std::swap(prev_, cur_);
+  std::swap(cur_, next_);
+  reactions(s, cur_, cur_.reaction);
+}
+
+SolverStats Newmark::stats() const {
+  return {solver_->solves(), solver_->totalIterations(), last_iterations_};
+}
+
+} // namespace lamina::membrane

@@ -1,0 +1,78 @@
+#pragma once
+/// @file time_integrator.hpp
+/// @brief The seam between a membrane model and a time-stepping scheme, in
+/// the spirit of MFEM's SecondOrderODESolver: a scheme advances the state of
+/// the second-order system
+///   M a + f_int(u) = F_ext(t, u) + F_drag(u, v) + R
+/// (Structure: M and f_int; LoadSet: F_ext and F_drag; R the reactions at
+/// the constrained DOFs, whose velocities are prescribed).
+///
+/// Meaning of the state on entry and exit:
+/// - init(s): on entry s.t, s.step, s.u and s.v hold the initial state (the
+///   prescribed velocities already set); on exit s.a is the acceleration of
+///   the equation of motion at s.t (zero at constrained DOFs whose velocity
+///   is constant) and forces() holds the forces at s.
+/// - step(s): on entry s is the state at t_n = s.step * dt (as left by init
+///   or by the previous step); on exit s is the state at
+///   t_{n+1} = (s.step + 1) * dt with s.step incremented, forces() holds the
+///   forces at t_{n+1}, previousForces() those at t_n, increment() is
+///   u_{n+1} - u_n. Times are step * dt (no accumulated round-off). On a
+///   non-finite result s is left unchanged and lamina::DivergenceError is
+///   thrown naming the time and the node.
+/// The works of the forces and the energy balance are kept outside the
+/// schemes (energy.hpp), from increment() and the forces at both ends.
+
+#include <Eigen/Dense>
+
+#include <string>
+
+namespace lamina::membrane {
+
+/// The state of the system at one time: what a checkpoint must hold.
+struct State {
+  double t = 0;      ///< time (s)
+  long step = 0;     ///< steps taken
+  Eigen::VectorXd u; ///< displacements (m), 3 per node
+  Eigen::VectorXd v; ///< velocities (m/s)
+  Eigen::VectorXd a; ///< accelerations (m/s^2)
+};
+
+/// Forces acting at one state.
+struct StateForces {
+  Eigen::VectorXd external; ///< loads F_ext (N, 3 per node)
+  Eigen::VectorXd drag;     ///< drag F_drag (N)
+  Eigen::VectorXd reaction; ///< R at each constrained DOF, in ConstrainedDofs order (N)
+};
+
+/// Linear-solver statistics of a scheme (zero for explicit schemes).
+struct SolverStats {
+  long solves = 0;         ///< linear solves so far
+  long iterations = 0;     ///< iterations summed over them
+  int last_iterations = 0; ///< iterations of the last step
+};
+
+/// A time-stepping scheme (see the file comment for the contract).
+class TimeIntegrator {
+public:
+  virtual ~TimeIntegrator() = default;
+  /// Completes the initial state @p s (its acceleration) and the forces at it.
+  virtual void init(State& s) = 0;
+  /// Advances @p s by one step of timeStep().
+  virtual void step(State& s) = 0;
+  /// @return the fixed step of the scheme (s)
+  virtual double timeStep() const = 0;
+  /// @return the forces at the current state
+  virtual const StateForces& forces() const = 0;
+  /// @return the forces at the start of the last step
+  virtual const StateForces& previousForces() const = 0;
+  /// @return u_{n+1} - u_n of the last step
+  virtual const Eigen::VectorXd& increment() const = 0;
+  /// @return the scheme's name for the summary ("newmark", ...)
+  virtual std::string name() const = 0;
+  /// @return linear-solver statistics
+  virtual SolverStats stats() const { return {}; }
+  /// @return seconds spent setting the scheme up (matrices, factorizations)
+  virtual double setupSeconds() const { return 0; }
+};
+
+} // namespace lamina::membrane

@@ -1,0 +1,30 @@
+#pragma once
+/// @file linear_membrane.hpp
+/// @brief The membrane paper's model: flat triangles in the x-y plane, small
+/// displacements, f_int = K u with K and M of eqs. (23)-(27).
+
+#include "membrane/model/model.hpp"
+#include "membrane/model/structure.hpp"
+
+namespace lamina::membrane {
+
+/// K and M assembled once (assembly.hpp); point masses added to M.
+class LinearMembrane final : public Structure {
+public:
+  /// Assembles K and M of @p model (consistent or lumped mass per model.time.lumped).
+  explicit LinearMembrane(const Model& model);
+  int numDofs() const override { return static_cast<int>(K_.rows()); }
+  const SparseMatrix& mass() const override { return M_; }
+  /// f = K u
+  void internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
+  /// @return u.Ku / 2
+  double strainEnergy(const Eigen::VectorXd& u) const override;
+  const SparseMatrix* stiffness() const override { return &K_; }
+  double setupSeconds() const override { return assembly_s_; }
+
+private:
+  SparseMatrix K_, M_;
+  double assembly_s_ = 0;
+};
+
+} // namespace lamina::membrane
