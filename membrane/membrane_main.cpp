@@ -2,10 +2,12 @@
 #include "core/error.hpp"
 #include "membrane/converge.hpp"
 #include "membrane/io/case_file.hpp"
+#include "membrane/loads/blast.hpp"
 #include "membrane/run.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 
@@ -37,12 +39,33 @@ int main(int argc, char** argv) {
   conv->add_option("--levels", levels, "number of grids (>= 3)")->required();
   conv->add_option("--sample-every", sample_every, "compare every n-th coarse step");
 
+  auto* blast = app.add_subcommand("blast", "Kingery-Bulmash blast parameters at one distance");
+  double charge = 0, distance = 0, tnt_factor = 1.0;
+  std::string burst_name = "hemispherical";
+  blast->add_option("--charge", charge, "explosive mass W, kg")->required();
+  blast->add_option("--distance", distance, "distance from the charge centre R, m")->required();
+  blast->add_option("--burst", burst_name, "hemispherical (surface) or spherical (free air)")
+      ->check(CLI::IsMember({"hemispherical", "spherical"}));
+  blast->add_option("--tnt-factor", tnt_factor, "TNT-equivalence factor (W_TNT = factor * W)");
+  blast->add_flag("--json", json, "print the parameters as JSON (SI units)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? kExitOk : kExitUsage;
   }
   try {
+    if (blast->parsed()) {
+      const auto burst = membrane::parseBurst(burst_name);
+      LAMINA_CHECK(std::isfinite(tnt_factor) && tnt_factor > 0,
+                   "--tnt-factor must be positive, got ", tnt_factor);
+      const auto p = membrane::kingeryBulmash(charge * tnt_factor, distance, burst);
+      if (json)
+        std::cout << membrane::blastToJson(p, burst).dump(2) << "\n";
+      else
+        std::cout << membrane::blastTable(p, burst);
+      return kExitOk;
+    }
     membrane::MaterialSources sources{library, ""};
     const bool quiet = json; // ProgressLine itself logs sparsely when stderr is not a tty
     if (run->parsed()) {
