@@ -57,12 +57,13 @@ public:
       : n_(3 * grid.size()), A_(A), M_(M), ref_(ref_scale), r_(n_), p_(n_), w_(n_) {}
 
   /// Solves load case E; returns the average stress in @p sigma.
-  /// The displacement itself is never formed: the average stress is linear
-  /// in it, <C (E + D x)> = <C E> + sum_k alpha_k <C D p_k>, and <C D p_k>
-  /// comes out of the stress pass of A p_k. This saves a vector and a pass.
+  /// The displacement itself is formed only if @p x is not null: the
+  /// average stress is linear in it, <C (E + D x)> = <C E> + sum_k alpha_k
+  /// <C D p_k>, and <C D p_k> comes out of the stress pass of A p_k. This
+  /// saves a vector and a pass when x is not wanted.
   LoadCaseResult solve(const std::array<double, 6>& E, double energy_E, const Options& opt,
                        const std::function<void(int, double)>& monitor,
-                       std::array<double, 6>& sigma) {
+                       std::array<double, 6>& sigma, double* x = nullptr) {
     double* r = r_.data();
     double* p = p_.data();
     double* w = w_.data();
@@ -72,6 +73,8 @@ public:
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < n; ++i)
       r[i] = -r[i];
+    if (x)
+      std::fill(x, x + n, 0.0);
     double rz = M_.apply(r, p); // p0 = z0 = M r0, rz = r0^T z0
     const double scale = ref_ * energy_E;
     LoadCaseResult res;
@@ -100,6 +103,11 @@ public:
 #pragma omp parallel for schedule(dynamic, 32768)
       for (std::size_t i = 0; i < n; ++i)
         r[i] -= alpha * w[i];
+      if (x) {
+#pragma omp parallel for schedule(dynamic, 32768)
+        for (std::size_t i = 0; i < n; ++i)
+          x[i] += alpha * p[i];
+      }
       auto t2 = Clock::now();
       time_V += std::chrono::duration<double>(t2 - t1).count();
       const double rz_new = M_.apply(r, w); // w now holds z = M r
@@ -187,6 +195,7 @@ Result Homogenizer::run() {
   const CellOperator A(grid_, phase_, C_);
   const GreenOperator M(grid_, res.lambda0, res.mu0, fft);
   CgSolver cg(grid_, A, M, static_cast<double>(res.voxels));
+  AlignedBuffer x(sink_ ? 3 * grid_.size() : 0);
   const double setup_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -207,7 +216,8 @@ Result Homogenizer::run() {
       }
     };
     try {
-      res.cases[static_cast<std::size_t>(k)] = cg.solve(E, energy, opt_, monitor, sigma);
+      res.cases[static_cast<std::size_t>(k)] =
+          cg.solve(E, energy, opt_, monitor, sigma, sink_ ? x.data() : nullptr);
     } catch (const DivergenceError& e) {
       throw DivergenceError("load case " + std::to_string(k + 1) + ": " + e.message());
     } catch (const Error& e) {
@@ -215,6 +225,8 @@ Result Homogenizer::run() {
     }
     for (int a = 0; a < 6; ++a)
       C(a, k) = sigma[static_cast<std::size_t>(a)];
+    if (sink_)
+      sink_(k, x.data());
   }
   progress.finish();
   if (std::getenv("LAMINA_HOMOGENIZE_PROFILE"))

@@ -83,6 +83,14 @@ public:
   /// Installs @p m (replaces the built-in progress line).
   void setMonitor(Monitor m) { monitor_ = std::move(m); }
 
+  /// Called after each load case k (0-5) with its converged nodal
+  /// displacement fluctuation u (3 x N, component-major, the units of the
+  /// grid spacing per unit strain). Set, the solver forms u (one more vector
+  /// and one more update per iteration); unset, it never does.
+  using DisplacementSink = std::function<void(int, const double*)>;
+  /// Installs @p s (see DisplacementSink).
+  void setDisplacementSink(DisplacementSink s) { sink_ = std::move(s); }
+
   /// Solves the six load cases and returns C, density and diagnostics.
   /// Throws lamina::DivergenceError on NaN/Inf, lamina::Error when a case
   /// does not converge within max_iterations.
@@ -95,6 +103,7 @@ private:
   std::vector<double> density_;
   Options opt_;
   Monitor monitor_;
+  DisplacementSink sink_;
 };
 
 } // namespace lamina::homogenize

@@ -45,7 +45,7 @@ std::string utcNow() {
 
 materials::Material makeEntry(const std::string& name, const micro::CellSpec& spec,
                               const micro::UnitCell& cell, const Result& result,
-                              const Options& options, double J) {
+                              const Options& options, double J, const Dispersion* dispersion) {
   materials::Material m;
   m.name = name;
   m.C = result.C;
@@ -84,7 +84,33 @@ materials::Material makeEntry(const std::string& name, const micro::CellSpec& sp
   p.insert("reference_lambda0", result.lambda0);
   p.insert("reference_mu0", result.mu0);
   p.insert("wall_s", result.wall_s);
+  if (dispersion) {
+    m.dispersion = dispersion->D;
+    m.cell_size = cell.size;
+    p.insert("dispersion_method", kDispersionMethod);
+    toml::array ls;
+    for (double r : dispersion->residual)
+      ls.push_back(r);
+    p.insert("dispersion_residuals", ls);
+  }
   return m;
+}
+
+EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& cell,
+                           const std::string& name, double J, const Options& options) {
+  EntryResult e{name, J, {}, std::nullopt};
+  const Grid grid = gridOf(cell);
+  const std::vector<double> density = spec.densities();
+  Homogenizer h(grid, cell.phase, spec.stiffnessesAt(J), density, options);
+  std::optional<DispersionAccumulator> acc;
+  if (spec.physical_size) {
+    acc.emplace(grid, cell.phase, density);
+    h.setDisplacementSink([&](int k, const double* u) { acc->addLoadCase(k, u); });
+  }
+  e.result = h.run();
+  if (acc)
+    e.dispersion = acc->result();
+  return e;
 }
 
 std::vector<EntryResult>
@@ -103,10 +129,9 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
   }
   std::vector<EntryResult> out;
   for (double J : states) {
-    EntryResult e{entryName(base, J, sweep), J, {}};
-    Homogenizer h(gridOf(cell), cell.phase, spec.stiffnessesAt(J), spec.densities(), options);
-    e.result = h.run();
-    materials::Material m = makeEntry(e.name, spec, cell, e.result, options, J);
+    EntryResult e = homogenizeCell(spec, cell, entryName(base, J, sweep), J, options);
+    materials::Material m = makeEntry(e.name, spec, cell, e.result, options, J,
+                                      e.dispersion ? &*e.dispersion : nullptr);
     // The phase map goes to an HDF5 side file beside the library (DESIGN.md:
     // large arrays never enter the text file), written before the entry that
     // names it so an entry never points at a missing file. Its path is stored
@@ -157,6 +182,10 @@ nlohmann::json toJson(const EntryResult& e) {
   j["symmetry"] = materials::toString(r.symmetry.cls);
   j["J"] = e.J;
   j["wall_s"] = r.wall_s;
+  if (e.dispersion) {
+    j["dispersion"] = materials::matrixToJson(e.dispersion->D);
+    j["dispersion_residuals"] = e.dispersion->residual;
+  }
   return j;
 }
 

@@ -3,6 +3,7 @@
 /// @brief From a cell file to library entries: the grid of a unit cell, the
 /// entry names of a J sweep, and the Material with its provenance.
 
+#include "homogenize/dispersion.hpp"
 #include "homogenize/homogenizer.hpp"
 #include "materials/library.hpp"
 #include "materials/material.hpp"
@@ -11,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,17 +30,26 @@ std::string entryName(const std::string& base, double J, bool sweep);
 /// provenance: cell file and its full text, resolution, voxels, volume
 /// fractions, J, solver, tolerance, residual and iterations per load case,
 /// asymmetry before symmetrizing, symmetry class, lamina version, UTC time,
-/// wall time.
+/// wall time. With @p dispersion (a cell with a size in metres) the entry
+/// also holds `dispersion` (zeta^2 D_lin, kg/m), `cell_size` (m) and the
+/// least-squares residuals of eq. 39 in its provenance.
 materials::Material makeEntry(const std::string& name, const micro::CellSpec& spec,
                               const micro::UnitCell& cell, const Result& result,
-                              const Options& options, double J);
+                              const Options& options, double J,
+                              const Dispersion* dispersion = nullptr);
 
 /// One homogenized entry: its name, matrix state and result.
 struct EntryResult {
-  std::string name; ///< library entry name
-  double J = 1.0;   ///< matrix state of the gvbo phase
-  Result result;    ///< C, density, diagnostics
+  std::string name;                     ///< library entry name
+  double J = 1.0;                       ///< matrix state of the gvbo phase
+  Result result;                        ///< C, density, diagnostics
+  std::optional<Dispersion> dispersion; ///< micro-inertia (cells with a size in metres)
 };
+
+/// Homogenizes @p cell at matrix state @p J; with a physical cell size
+/// (spec.physical_size) also its dispersion tensor from the same solves.
+EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& cell,
+                           const std::string& name, double J, const Options& options);
 
 /// Homogenizes @p cell at every J state of @p spec (entryName rule) and adds
 /// each entry to @p library. Checks all names first: an existing entry is an
@@ -50,11 +61,18 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
 
 /// The `--json` summary of an entry: name, C (6x6, Pa, lamina order),
 /// density, iterations (6), residual, voxels, volume_fraction (all
-/// inclusions), phase_fractions, asymmetry, symmetry, J, wall_s.
+/// inclusions), phase_fractions, asymmetry, symmetry, J, wall_s; with
+/// micro-inertia also dispersion (6x6, kg/m), cell_size (m) and
+/// dispersion_residuals (eq. 39 least squares, per load case).
 nlohmann::json toJson(const EntryResult& e);
 
 /// Solver name written to provenance and docs.
 inline constexpr const char* kSolverName =
     "rotated staggered grid (Willot 2015, one-point hex) + FFT-preconditioned CG";
+
+/// Dispersion method written to provenance.
+inline constexpr const char* kDispersionMethod =
+    "D_lin of GVBO chapter eqs. 38-39: h = H + least-squares periodic solution of the density "
+    "term (FFT, rotated-grid gradient); zeta^2 D = rho <h h> (trilinear interpolant)";
 
 } // namespace lamina::homogenize

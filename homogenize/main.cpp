@@ -12,13 +12,39 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
 namespace {
 
-void printHuman(const std::string& name, const lamina::homogenize::Result& r,
-                const lamina::micro::UnitCell& cell, const std::string& library) {
+void printDispersion(const lamina::homogenize::EntryResult& e) {
+  if (!e.dispersion) {
+    std::printf("no micro-inertia: the cell has no size in metres ([cell] size)\n");
+    return;
+  }
+  const auto& d = *e.dispersion;
+  std::printf("dispersion zeta^2 D_lin (kg/m, lamina order; eqs. 38-39):\n");
+  for (int i = 0; i < 6; ++i) {
+    std::printf("  ");
+    for (int j = 0; j < 6; ++j)
+      std::printf(" %12.5g", d.D(i, j));
+    std::printf("\n");
+  }
+  std::printf("eq. 39 least-squares residual per load case");
+  for (double r : d.residual)
+    std::printf(" %.2g", r);
+  std::printf("\ncharacteristic length sqrt(zeta^2 D_II / rho) (m):");
+  for (int i = 0; i < 6; ++i)
+    std::printf(" %.3g", std::sqrt(std::max(0.0, d.D(i, i)) / e.result.density));
+  std::printf("\n");
+}
+
+void printHuman(const lamina::homogenize::EntryResult& e, const lamina::micro::UnitCell& cell,
+                const std::string& library) {
+  const std::string& name = e.name;
+  const lamina::homogenize::Result& r = e.result;
   std::printf("%s: %zu voxels (%d x %d x %d), density %.6g kg/m^3\n", name.c_str(), r.voxels,
               cell.n[0], cell.n[1], cell.n[2], r.density);
   std::printf("C (GPa, lamina order xx yy zz xy yz xz, engineering shear):\n");
@@ -38,6 +64,7 @@ void printHuman(const std::string& name, const lamina::homogenize::Result& r,
   std::printf("asymmetry before symmetrizing %.3g, symmetry %s (tol %.1g), wall %.2f s\n",
               r.asymmetry, lamina::materials::toString(r.symmetry.cls).c_str(), r.symmetry_tol,
               r.wall_s);
+  printDispersion(e);
   std::printf("added '%s' to %s\n", name.c_str(), library.c_str());
 }
 
@@ -88,7 +115,7 @@ int main(int argc, char** argv) {
                                         if (json)
                                           std::cout << homogenize::toJson(e).dump() << std::endl;
                                         else
-                                          printHuman(e.name, e.result, cell, lib.path().string());
+                                          printHuman(e, cell, lib.path().string());
                                       });
   } catch (const lamina::DivergenceError& e) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());

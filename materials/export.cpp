@@ -142,6 +142,13 @@ nlohmann::json materialToJson(const Material& m) {
   }
   if (!m.side_file.empty())
     j["side_file"] = m.side_file;
+  if (m.dispersion) {
+    j["dispersion"] = matrixToJson(*m.dispersion);
+    const auto l = dispersionLengths(m);
+    j["dispersion_lengths"] = l;
+  }
+  if (m.cell_size)
+    j["cell_size"] = {(*m.cell_size)[0], (*m.cell_size)[1], (*m.cell_size)[2]};
   if (!m.provenance.empty()) {
     std::ostringstream os;
     os << toml::json_formatter{m.provenance};

@@ -45,7 +45,8 @@ Material makeLayup(const std::string& name, const std::vector<Ply>& plies,
                   {"", 0, name + ": ply " + p.material});
     h += p.thickness;
   }
-  Matrix6 sum = Matrix6::Zero();
+  Matrix6 sum = Matrix6::Zero(), dispersion = Matrix6::Zero();
+  bool any_dispersion = false;
   double mass = 0;
   toml::array plyText;
   for (const Ply& p : plies) {
@@ -55,7 +56,14 @@ Material makeLayup(const std::string& name, const std::vector<Ply>& plies,
     // Weights w_k = h_k / h are formed first so that one ply (w = 1) or two equal
     // plies of any thickness (w = 1/2) average without rounding.
     const double w = p.thickness / h;
-    sum += w * m.C.rotated(axisRotationDegrees(2, p.angle_deg)).matrix();
+    const Eigen::Matrix3d R = axisRotationDegrees(2, p.angle_deg);
+    sum += w * m.C.rotated(R).matrix();
+    // micro-inertia acts on the same strain rate: its energy adds by thickness
+    // like the stiffness (a ply without dispersion contributes zero)
+    if (m.dispersion) {
+      dispersion += w * Stiffness(*m.dispersion).rotated(R).matrix();
+      any_dispersion = true;
+    }
     mass += w * m.density;
     plyText.push_back(p.material + ":" + core::formatShort(p.angle_deg, 17) + ":" +
                       core::formatShort(p.thickness, 17));
@@ -66,8 +74,13 @@ Material makeLayup(const std::string& name, const std::vector<Ply>& plies,
   out.C = Stiffness(sum).symmetrized();
   out.density = mass;
   out.thickness = h;
+  if (any_dispersion)
+    out.dispersion = 0.5 * (dispersion + dispersion.transpose());
   out.plies = plies;
   out.provenance.insert("method", "exact thickness average D = sum h_k R_k D_k R_k^T / h");
+  if (any_dispersion)
+    out.provenance.insert("dispersion_method",
+                          "thickness average of the plies' zeta^2 D, rotated like C");
   out.provenance.insert("plies", plyText);
   validate(out);
   return out;

@@ -111,6 +111,34 @@ std::string value(const toml::node& n) {
   return quoteBasic(os.str());
 }
 
+/// A 6x6 matrix (6 rows of 6 numbers, lamina order) at @p k; @p unit names
+/// it in the error.
+Matrix6 readMatrix6(const core::TableReader& t, const char* k, const std::string& unit) {
+  const auto rows = t.getMatrix(k);
+  bool ok = rows.size() == 6;
+  for (const auto& row : rows)
+    ok = ok && row.size() == 6;
+  if (!ok)
+    t.fail(k, "expected 6 rows of 6 numbers (" + unit + ", lamina order)");
+  Matrix6 c;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      c(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+  return c;
+}
+
+/// Writes a 6x6 matrix as 6 rows with 17 significant digits.
+void writeMatrix6(std::ostream& os, const char* k, const Matrix6& c) {
+  os << k << " = [\n";
+  for (int i = 0; i < 6; ++i) {
+    os << "  [";
+    for (int j = 0; j < 6; ++j)
+      os << (j ? ", " : "") << core::formatExact(c(i, j));
+    os << "],\n";
+  }
+  os << "]\n";
+}
+
 Material readEntry(const core::TableReader& t, const std::string& name) {
   Material m;
   m.name = name;
@@ -118,18 +146,15 @@ Material readEntry(const core::TableReader& t, const std::string& name) {
   if (m.kind != "catalog" && m.kind != "homogenized" && m.kind != "layup" && m.kind != "constants")
     t.fail("kind", "unknown kind '" + m.kind + "' (catalog, homogenized, layup, constants)");
   m.density = t.getDouble("density");
-  const auto rows = t.getMatrix("C");
-  if (rows.size() != 6)
-    t.fail("C", "expected 6 rows of 6 numbers (Pa, lamina order)");
-  Matrix6 c;
-  for (int i = 0; i < 6; ++i) {
-    const auto& row = rows[static_cast<std::size_t>(i)];
-    if (row.size() != 6)
-      t.fail("C", "expected 6 rows of 6 numbers (Pa, lamina order)");
-    for (int j = 0; j < 6; ++j)
-      c(i, j) = row[static_cast<std::size_t>(j)];
+  m.C = Stiffness(readMatrix6(t, "C", "Pa"));
+  if (t.has("dispersion"))
+    m.dispersion = readMatrix6(t, "dispersion", "zeta^2 D, kg/m");
+  if (t.has("cell_size")) {
+    const auto v = t.getDoubleArray("cell_size");
+    if (v.size() != 3)
+      t.fail("cell_size", "expected 3 edge lengths (m)");
+    m.cell_size = Eigen::Vector3d(v[0], v[1], v[2]);
   }
-  m.C = Stiffness(c);
   if (t.has("thickness"))
     m.thickness = t.getDouble("thickness");
   m.side_file = t.getString("side_file", "");
@@ -152,7 +177,11 @@ Material readEntry(const core::TableReader& t, const std::string& name) {
   try {
     validate(m);
   } catch (const Error& e) {
-    t.fail("C", e.message());
+    const std::string msg = e.message();
+    t.fail(msg.rfind("dispersion", 0) == 0  ? "dispersion"
+           : msg.rfind("cell_size", 0) == 0 ? "cell_size"
+                                            : "C",
+           msg);
   }
   return m;
 }
@@ -212,6 +241,7 @@ std::string Library::serialize(const std::map<std::string, Material>& entries) {
   std::ostringstream os;
   os << "# lamina materials library. Written by lamina programs; change it with `materials`.\n"
      << "# C: 6x6 stiffness in Pa, lamina order [xx, yy, zz, xy, yz, xz], engineering shear.\n"
+     << "# dispersion: zeta^2 D (kg/m, same order), micro-inertia; cell_size: m.\n"
      << "[lamina]\nformat = \"" << kFormat << "\"\nversion = " << kVersion << "\n";
   for (const auto& [name, m] : entries) {
     const std::string head = "materials." + key(name);
@@ -222,14 +252,13 @@ std::string Library::serialize(const std::map<std::string, Material>& entries) {
       os << "thickness = " << core::formatExact(*m.thickness) << "\n";
     if (!m.side_file.empty())
       os << "side_file = " << quoteBasic(m.side_file) << "\n";
-    os << "C = [\n";
-    for (int i = 0; i < 6; ++i) {
-      os << "  [";
-      for (int j = 0; j < 6; ++j)
-        os << (j ? ", " : "") << core::formatExact(m.C(i, j));
-      os << "],\n";
-    }
-    os << "]\n";
+    writeMatrix6(os, "C", m.C.matrix());
+    if (m.cell_size)
+      os << "cell_size = [" << core::formatExact((*m.cell_size)[0]) << ", "
+         << core::formatExact((*m.cell_size)[1]) << ", " << core::formatExact((*m.cell_size)[2])
+         << "]\n";
+    if (m.dispersion)
+      writeMatrix6(os, "dispersion", *m.dispersion);
     if (!m.plies.empty()) {
       os << "plies = [\n";
       for (const Ply& p : m.plies)

@@ -6,6 +6,10 @@
 
 #include <toml++/toml.h>
 
+#include <array>
+
+#include <Eigen/Core>
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,11 +33,25 @@ struct Material {
   std::vector<Ply> plies;          ///< the plies, layups only
   std::string side_file;           ///< optional HDF5 side file with large arrays
   toml::table provenance;          ///< what made it (free-form, written verbatim)
+  /// Micro-inertia (GVBO chapter eq. 35): zeta^2 D, the coefficient of the
+  /// engineering strain acceleration in the stress, 6x6, lamina order, kg/m;
+  /// symmetric positive semi-definite. Absent: no micro-inertia.
+  std::optional<Matrix6> dispersion;
+  /// Edge lengths of the unit cell that made the dispersion (m); present
+  /// with it on homogenized entries.
+  std::optional<Eigen::Vector3d> cell_size;
 };
+
+/// The characteristic lengths of micro-inertia, sqrt(zeta^2 D_II / rho) per
+/// lamina component I (m): a plane wave whose strain is component I alone
+/// (P waves along x: I = xx; S waves along x polarised in y: I = xy...)
+/// follows omega^2 = c^2 k^2 / (1 + l_I^2 k^2). Zero without dispersion.
+std::array<double, 6> dispersionLengths(const Material& m);
 
 /// Throws lamina::Error naming the material unless C is symmetric positive
 /// definite, the density is finite and positive and the thickness (if any)
-/// is positive.
+/// is positive, and the dispersion (if any) is finite, symmetric and
+/// positive semi-definite and the cell size positive.
 void validate(const Material& m);
 
 } // namespace lamina::materials

@@ -52,6 +52,26 @@ void printHuman(const mat::Material& m) {
   std::cout << "  E1 " << g(e.E1) << "  E2 " << g(e.E2) << "  E3 " << g(e.E3) << " Pa\n"
             << "  G12 " << g(e.G12) << "  G23 " << g(e.G23) << "  G13 " << g(e.G13) << " Pa\n"
             << "  nu12 " << g(e.nu12) << "  nu13 " << g(e.nu13) << "  nu23 " << g(e.nu23) << "\n";
+  if (m.cell_size)
+    std::cout << "  cell size " << g((*m.cell_size)[0]) << " x " << g((*m.cell_size)[1]) << " x "
+              << g((*m.cell_size)[2]) << " m\n";
+  if (m.dispersion) {
+    std::cout << "  dispersion zeta^2 D (kg/m, lamina order; micro-inertia, eq. 35):\n";
+    for (int i = 0; i < 6; ++i) {
+      std::cout << "   ";
+      for (int j = 0; j < 6; ++j) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, " %11.4g", (*m.dispersion)(i, j));
+        std::cout << buf;
+      }
+      std::cout << "\n";
+    }
+    // omega^2 = c^2 k^2 / (1 + l^2 k^2) for a wave straining component I alone
+    const auto l = mat::dispersionLengths(m);
+    std::cout << "  characteristic length sqrt(zeta^2 D_II / rho) (m): xx " << g(l[0]) << "  yy "
+              << g(l[1]) << "  zz " << g(l[2]) << "  xy " << g(l[3]) << "  yz " << g(l[4])
+              << "  xz " << g(l[5]) << "\n";
+  }
   for (const mat::Ply& p : m.plies)
     std::cout << "  ply " << p.material << " at " << g(p.angle_deg) << " deg, " << g(p.thickness)
               << " m\n";

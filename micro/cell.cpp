@@ -1,6 +1,7 @@
 #include "micro/cell.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/toml_reader.hpp"
 
 #include <cmath>
@@ -214,6 +215,12 @@ CellSpec readCellString(const std::string& text, const std::string& source,
       cell.size.setConstant(c.getDouble("size"));
     if (!(cell.size.minCoeff() > 0))
       c.fail("size", "edge lengths must be positive");
+    if (!(cell.size.maxCoeff() <= kMaxCellEdge))
+      c.fail("size", "edge lengths are in metres; " + core::formatShort(cell.size.maxCoeff()) +
+                         " m is not a unit cell (limit " + core::formatShort(kMaxCellEdge) +
+                         " m). Give the physical size (e.g. size = 20e-6), or leave size out "
+                         "for a scale-free cell without micro-inertia");
+    cell.physical_size = true;
   }
   const auto phases = root.tableArray("phases");
   if (phases.empty())

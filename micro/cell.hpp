@@ -7,7 +7,8 @@
 /// ```toml
 /// [cell]
 /// resolution = 32            # N or [N1, N2, N3] voxels
-/// size = [1.0, 1.0, 1.0]     # optional, cell edge lengths (any length unit)
+/// size = [20e-6, 20e-6, 20e-6]  # optional, cell edge lengths in metres
+///                            # (absent: scale-free cell of edge 1, no micro-inertia)
 /// [[phases]]                 # the first phase is the matrix
 /// name = "soft"
 /// catalog = "polyurea-soft"  # or law = "isotropic" / "anisotropic" / "gvbo" ...
@@ -52,15 +53,21 @@ struct InclusionGroup {
   std::string key;                       ///< "inclusions[i]" for messages
 };
 
+/// Largest cell edge accepted as metres (m): above it `size` cannot be a
+/// unit cell of a membrane material (and is most likely a unit-less size
+/// written before sizes were metres).
+inline constexpr double kMaxCellEdge = 0.1;
+
 /// A cell file, parsed and validated (nothing placed yet).
 struct CellSpec {
   std::string file;                               ///< path it was read from
   std::string text;                               ///< the full file text (provenance)
   std::string description;                        ///< optional one-line description
   std::array<int, 3> resolution{32, 32, 32};      ///< voxels along x, y, z
-  Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths
-  std::vector<Phase> phases;                      ///< phases[0] is the matrix
-  std::vector<InclusionGroup> groups;             ///< inclusion groups, placed in order
+  Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths (m; 1 if not given)
+  bool physical_size = false; ///< `size` was given (metres): the cell has a scale (micro-inertia)
+  std::vector<Phase> phases;  ///< phases[0] is the matrix
+  std::vector<InclusionGroup> groups; ///< inclusion groups, placed in order
 
   /// @return the index of the phase named @p name, -1 if none
   int phaseIndex(const std::string& name) const;

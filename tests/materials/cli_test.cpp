@@ -96,6 +96,42 @@ TEST_F(MaterialsProgram, Table1ShowJsonReproducesTheTable) {
   EXPECT_EQ(j.at("provenance").at("catalog_key"), "table1-anisotropic");
 }
 
+// Issue 12's interface: `show --json` of an entry with micro-inertia has
+// "dispersion" (6x6, kg/m, as stored, bit for bit) and "cell_size" (m), and
+// the human form prints the characteristic lengths sqrt(zeta^2 D_II / rho).
+// A [0/90] layup of it averages the plies' dispersions rotated like C: the
+// 90-degree ply swaps xx and yy, so the layup's D_xx = D_yy = (D_xx + D_yy)/2
+// of the ply (exact: two equal weights 1/2 of exactly representable values).
+TEST_F(MaterialsProgram, DispersionIsShownAndAveragedInLayups) {
+  lamina::test::writeFile(lib_,
+                          "[lamina]\nformat = \"lamina-materials-library\"\nversion = 1\n"
+                          "[materials.lam]\nkind = \"homogenized\"\ndensity = 3125.0\n"
+                          "cell_size = [0.002, 0.0001, 0.0001]\n"
+                          "C = [[6e9, 5e9, 5e9, 0, 0, 0], [5e9, 74e9, 24e9, 0, 0, 0],\n"
+                          "     [5e9, 24e9, 74e9, 0, 0, 0], [0, 0, 0, 7e7, 0, 0],\n"
+                          "     [0, 0, 0, 0, 25e9, 0], [0, 0, 0, 0, 0, 7e7]]\n"
+                          "dispersion = [[5e-4, 5e-5, 5e-5, 0, 0, 0], [5e-5, 2.5e-5, 0, 0, 0, 0],\n"
+                          "     [5e-5, 0, 2.5e-5, 0, 0, 0], [0, 0, 0, 6e-4, 0, 0],\n"
+                          "     [0, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 6e-4]]\n");
+  const nlohmann::json j = showJson("lam");
+  const auto D = jsonMatrix(j.at("dispersion"));
+  EXPECT_EQ(D(0, 0), 5e-4);
+  EXPECT_EQ(D(0, 1), 5e-5);
+  EXPECT_EQ(D(3, 3), 6e-4);
+  EXPECT_EQ(j.at("cell_size").get<std::vector<double>>(), (std::vector<double>{2e-3, 1e-4, 1e-4}));
+  const auto human = run("show lam");
+  ASSERT_EQ(human.status, 0) << human.err;
+  char xx[64];
+  std::snprintf(xx, sizeof xx, "xx %s",
+                lamina::core::formatShort(std::sqrt(5e-4 / 3125.0)).c_str());
+  EXPECT_NE(human.out.find(xx), std::string::npos) << human.out;
+  ASSERT_EQ(run("layup lam-0-90 --ply lam:0:1e-3 --ply lam:90:1e-3").status, 0);
+  const auto L = jsonMatrix(showJson("lam-0-90").at("dispersion"));
+  EXPECT_EQ(L(0, 0), 0.5 * (5e-4 + 2.5e-5));
+  EXPECT_EQ(L(1, 1), 0.5 * (5e-4 + 2.5e-5));
+  EXPECT_EQ(L(3, 3), 6e-4); // xy shear: rotating by 90 degrees maps it to itself
+}
+
 // `add --constants` takes the upper triangle row by row in lamina order;
 // written with 17 digits they come back bit-identical from `show --json`.
 TEST_F(MaterialsProgram, AddConstantsRoundTripsInDocumentedOrder) {

@@ -239,3 +239,26 @@ TEST(Library, ResolvePathPrecedence) {
   EXPECT_EQ(mat::Library::resolvePath(""), "/tmp/xdg/lamina/library.toml");
   ::unsetenv("XDG_DATA_HOME");
 }
+
+// Micro-inertia fields (issue 12): a dispersion zeta^2 D (a random Gram
+// matrix, full precision, kg/m) and the cell size come back bit-identical.
+TEST(Library, DispersionAndCellSizeRoundTrip) {
+  TempDir dir;
+  std::mt19937_64 rng(12);
+  mat::Material m = randomMaterial(rng, "laminate");
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  mat::Matrix6 a;
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      a(i, j) = u(rng) * 1e-2 / 3.0;
+  m.dispersion = a * a.transpose();
+  m.cell_size = Eigen::Vector3d(2e-3 / 3, 1e-4, 7e-5);
+  mat::Library(dir / "lib.toml").add(m);
+  const mat::Material back = mat::Library(dir / "lib.toml").get("laminate");
+  ASSERT_TRUE(back.dispersion && back.cell_size);
+  EXPECT_EQ(*back.dispersion, *m.dispersion);
+  EXPECT_EQ(*back.cell_size, *m.cell_size);
+  // an entry without them stays without
+  mat::Library(dir / "lib.toml").add(randomMaterial(rng, "plain"));
+  EXPECT_FALSE(mat::Library(dir / "lib.toml").get("plain").dispersion);
+}

@@ -123,6 +123,32 @@ TEST_F(LibraryFile, BadThicknessNamesTheKey) {
   EXPECT_NE(msg.find("'materials.steel.plies[0].thickness'"), std::string::npos) << msg;
 }
 
+// A dispersion (issue 12) must be 6x6, symmetric and positive
+// semi-definite; a cell size three positive lengths. Each names its key.
+TEST_F(LibraryFile, BadDispersionAndCellSizeNameTheirKeys) {
+  const std::string zero = "  [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],\n";
+  auto dispersion = [&](const std::string& first_row, int rows) {
+    std::string t = "dispersion = [\n" + first_row;
+    for (int i = 1; i < rows; ++i)
+      t += zero;
+    return t + "]\n";
+  };
+  std::string msg = load(kHeader + kEntry + dispersion(zero, 5));
+  EXPECT_NE(msg.find("'materials.steel.dispersion'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("6 rows"), std::string::npos) << msg;
+  msg = load(kHeader + kEntry + dispersion("  [1e-3, 1e-4, 0.0, 0.0, 0.0, 0.0],\n", 6));
+  EXPECT_NE(msg.find("'materials.steel.dispersion'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("symmetric"), std::string::npos) << msg;
+  msg = load(kHeader + kEntry + dispersion("  [-1e-3, 0.0, 0.0, 0.0, 0.0, 0.0],\n", 6));
+  EXPECT_NE(msg.find("'materials.steel.dispersion'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("semi-definite"), std::string::npos) << msg;
+  msg = load(kHeader + kEntry + "cell_size = [1e-3, 0.0, 1e-3]\n");
+  EXPECT_NE(msg.find("'materials.steel.cell_size'"), std::string::npos) << msg;
+  msg = load(kHeader + kEntry + "cell_size = [1e-3, 1e-3]\n");
+  EXPECT_NE(msg.find("'materials.steel.cell_size'"), std::string::npos) << msg;
+  EXPECT_EQ(load(kHeader + kEntry + dispersion("  [1e-3, 0.0, 0.0, 0.0, 0.0, 0.0],\n", 6)), "");
+}
+
 TEST_F(LibraryFile, UnknownKindNamesTheKey) {
   std::string text = kHeader + kEntry;
   text.replace(text.find("\"catalog\""), 9, "\"magic\"");

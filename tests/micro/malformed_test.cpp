@@ -65,6 +65,20 @@ TEST(MalformedCell, BadPhaseLaws) {
               "law");
 }
 
+// A cell's size is in metres (issue 12): an edge above 0.1 m cannot be a
+// unit cell (and is most likely a unit-less size from before), so it is an
+// error that says so; no size is a scale-free cell.
+TEST(MalformedCell, SizeIsInMetres) {
+  expectError("[cell]\nresolution = 8\nsize = [1.0, 1.0, 1.0]\n" + kHead.substr(22), "size",
+              "metres");
+  const CellSpec none = readCellString(kHead, "ok.toml", lazyCatalog());
+  EXPECT_FALSE(none.physical_size);
+  const CellSpec given = readCellString("[cell]\nresolution = 8\nsize = 2e-5\n" + kHead.substr(22),
+                                        "ok.toml", lazyCatalog());
+  EXPECT_TRUE(given.physical_size);
+  EXPECT_EQ(given.size, Eigen::Vector3d::Constant(2e-5));
+}
+
 TEST(MalformedCell, BadResolutionAndFraction) {
   expectError("[cell]\nresolution = 1\n[[phases]]\nname = \"m\"\nlaw = \"isotropic\"\nE = "
               "1e9\nnu = 0.3\ndensity = 1000\n",
