@@ -1,6 +1,7 @@
 #include "membrane/integrators/block_matrix.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +12,7 @@
 
 namespace lamina::membrane {
 
-BlockMatrix::BlockMatrix(const SparseMatrix& A) {
+BlockMatrix::BlockMatrix(const SparseMatrix& A, bool share_rows) {
   LAMINA_CHECK(A.rows() % 3 == 0 && A.rows() == A.cols(), "BlockMatrix needs a 3n x 3n matrix");
   const int n = static_cast<int>(A.rows() / 3);
   n_ = n;
@@ -36,7 +37,8 @@ BlockMatrix::BlockMatrix(const SparseMatrix& A) {
         for (int d = 0; d < 3; ++d)
           val_[9 * b + 3 * c + d] = v[outer[3 * i + c] + 3 * k + d];
     }
-  shareRepeatedRows();
+  if (share_rows)
+    shareRepeatedRows();
 }
 
 void BlockMatrix::shareRepeatedRows() {
@@ -47,12 +49,30 @@ void BlockMatrix::shareRepeatedRows() {
   std::unordered_map<std::string, int> seen;
   std::vector<int> kind(n), first;
   std::string key;
+  auto sameRow = [&](int i, int r, double quantum) {
+    if (start_[i + 1] - start_[i] != start_[r + 1] - start_[r])
+      return false;
+    for (int b = start_[i], c = start_[r]; b < start_[i + 1]; ++b, ++c) {
+      if (col_[b] - i != col_[c] - r)
+        return false;
+      for (int q = 0; q < 9; ++q)
+        if (std::abs(val_[9 * b + q] - val_[9 * c + q]) > quantum)
+          return false;
+    }
+    return true;
+  };
   for (int i = 0; i < n; ++i) {
     double scale = 0;
     for (int b = start_[i]; b < start_[i + 1]; ++b)
       for (int q = 0; q < 9; ++q)
         scale = std::max(scale, std::abs(val_[9 * b + q]));
     const double quantum = scale > 0 ? 1e-14 * scale : 1.0;
+    // The previous node's row first: equal within the quantum, the two nodes
+    // join one run even where round-off puts them on either side of a level.
+    if (i > 0 && sameRow(i, first[kind[i - 1]], quantum)) {
+      kind[i] = kind[i - 1];
+      continue;
+    }
     key.clear();
     for (int b = start_[i]; b < start_[i + 1]; ++b) {
       const std::int32_t off = col_[b] - i;
@@ -79,41 +99,143 @@ void BlockMatrix::shareRepeatedRows() {
     kstart_.push_back(static_cast<int>(koff_.size()));
   }
   kind_ = std::move(kind);
+  run_begin_.clear();
+  for (int i = 0; i < n; ++i)
+    if (i == 0 || kind_[i] != kind_[i - 1])
+      run_begin_.push_back(i);
+  run_begin_.push_back(n);
   std::vector<int>().swap(col_);
   std::vector<double>().swap(val_);
   std::vector<int>().swap(start_);
 }
 
+namespace {
+
+/// Planar y = A x on the nodes [i0, i1) of one run: every node applies the
+/// blocks m[9 b..] at column offsets off[b], b in [0, nb). @return x.y there.
+LAMINA_VECTOR_CLONES
+double runProduct(const int* off, const double* m, int nb, int n, const double* __restrict x,
+                  double* __restrict y, int i0, int i1) {
+  const double* __restrict x0 = x;
+  const double* __restrict x1 = x + n;
+  const double* __restrict x2 = x + 2 * static_cast<std::ptrdiff_t>(n);
+  double* __restrict y0 = y;
+  double* __restrict y1 = y + n;
+  double* __restrict y2 = y + 2 * static_cast<std::ptrdiff_t>(n);
+  for (int i = i0; i < i1; ++i)
+    y0[i] = y1[i] = y2[i] = 0;
+  for (int b = 0; b < nb; ++b, m += 9) {
+    const std::ptrdiff_t o = off[b];
+    const double m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3], m4 = m[4], m5 = m[5], m6 = m[6],
+                 m7 = m[7], m8 = m[8];
+    for (int i = i0; i < i1; ++i) {
+      const double a = x0[i + o], c = x1[i + o], d = x2[i + o];
+      y0[i] += m0 * a + m1 * c + m2 * d;
+      y1[i] += m3 * a + m4 * c + m5 * d;
+      y2[i] += m6 * a + m7 * c + m8 * d;
+    }
+  }
+  double dot = 0;
+#pragma omp simd reduction(+ : dot)
+  for (int i = i0; i < i1; ++i)
+    dot += x0[i] * y0[i] + x1[i] * y1[i] + x2[i] * y2[i];
+  return dot;
+}
+
+/// Below this many node rows threads cost more than they save.
+constexpr int kParallelNodes = 10000;
+
+} // namespace
+
+void toPlanar(const double* a, double* p, int n, int i0, int i1) {
+  for (int i = i0; i < i1; ++i)
+    for (int c = 0; c < 3; ++c)
+      p[static_cast<std::ptrdiff_t>(c) * n + i] = a[3 * static_cast<std::ptrdiff_t>(i) + c];
+}
+
+void fromPlanar(const double* p, double* a, int n, int i0, int i1) {
+  for (int i = i0; i < i1; ++i)
+    for (int c = 0; c < 3; ++c)
+      a[3 * static_cast<std::ptrdiff_t>(i) + c] = p[static_cast<std::ptrdiff_t>(c) * n + i];
+}
+
 void BlockMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  product<false>(x, y);
+  if (kind_.empty())
+    product<false>(x, y);
+  else
+    productViaPlanar<false>(x, y);
 }
 
 double BlockMatrix::multiplyDot(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  return product<true>(x, y);
+  return kind_.empty() ? product<true>(x, y) : productViaPlanar<true>(x, y);
+}
+
+double BlockMatrix::multiplyPlanar(const double* x, double* y, int begin, int end) const {
+  const int n = n_;
+  if (!kind_.empty()) {
+    double dot = 0;
+    forEachRun(begin, end, [&](int b, int e, int row) {
+      dot += runProduct(koff_.data() + kstart_[row], kval_.data() + 9 * std::size_t(kstart_[row]),
+                        kstart_[row + 1] - kstart_[row], n, x, y, b, e);
+    });
+    return dot;
+  }
+  // Plain blocks: one node at a time, columns gathered from the three planes.
+  const double* x1 = x + n;
+  const double* x2 = x + 2 * static_cast<std::ptrdiff_t>(n);
+  double dot = 0;
+  for (int i = begin; i < end; ++i) {
+    double y0 = 0, y1 = 0, y2 = 0;
+    for (int b = start_[i]; b < start_[i + 1]; ++b) {
+      const double* m = val_.data() + 9 * static_cast<std::size_t>(b);
+      const int j = col_[b];
+      const double a = x[j], c = x1[j], d = x2[j];
+      y0 += m[0] * a + m[1] * c + m[2] * d;
+      y1 += m[3] * a + m[4] * c + m[5] * d;
+      y2 += m[6] * a + m[7] * c + m[8] * d;
+    }
+    y[i] = y0;
+    y[n + i] = y1;
+    y[2 * static_cast<std::ptrdiff_t>(n) + i] = y2;
+    dot += x[i] * y0 + x1[i] * y1 + x2[i] * y2;
+  }
+  return dot;
+}
+
+template <bool Dot>
+double BlockMatrix::productViaPlanar(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  const int n = n_;
+  y.resize(3 * n);
+  xs_.resize(3 * static_cast<std::size_t>(n));
+  ys_.resize(3 * static_cast<std::size_t>(n));
+  double dot = 0;
+#pragma omp parallel reduction(+ : dot) if (n > kParallelNodes)
+  {
+    const auto [b, e] = core::threadRange(n);
+    toPlanar(x.data(), xs_.data(), n, b, e);
+#pragma omp barrier
+    const double d = multiplyPlanar(xs_.data(), ys_.data(), b, e);
+    if (Dot)
+      dot += d;
+    fromPlanar(ys_.data(), y.data(), n, b, e);
+  }
+  return dot;
 }
 
 template <bool Dot>
 double BlockMatrix::product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+  // Plain storage, interleaved vectors: the row of node i, absolute columns.
   const int n = nodes();
   y.resize(3 * n);
   const double* xp = x.data();
   double* yp = y.data();
-  // Shared rows: kind[i] picks the stored row, columns are offsets from i.
-  // Plain storage: the row of node i, absolute columns.
-  const bool shared = !kind_.empty();
-  const int* rowp = shared ? kind_.data() : nullptr;
-  const int* ks = shared ? kstart_.data() : start_.data();
-  const int* cols = shared ? koff_.data() : col_.data();
-  const double* kv = shared ? kval_.data() : val_.data();
   double dot = 0;
-#pragma omp parallel for schedule(static) reduction(+ : dot) if (n > 10000)
+#pragma omp parallel for schedule(static) reduction(+ : dot) if (n > kParallelNodes)
   for (int i = 0; i < n; ++i) {
     double y0 = 0, y1 = 0, y2 = 0;
-    const int t = shared ? rowp[i] : i;
-    const std::ptrdiff_t base = shared ? i : 0;
-    for (int b = ks[t]; b < ks[t + 1]; ++b) {
-      const double* m = kv + 9 * static_cast<std::size_t>(b);
-      const double* xj = xp + 3 * (base + cols[b]);
+    for (int b = start_[i]; b < start_[i + 1]; ++b) {
+      const double* m = val_.data() + 9 * static_cast<std::size_t>(b);
+      const double* xj = xp + 3 * static_cast<std::ptrdiff_t>(col_[b]);
       y0 += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
       y1 += m[3] * xj[0] + m[4] * xj[1] + m[5] * xj[2];
       y2 += m[6] * xj[0] + m[7] * xj[1] + m[8] * xj[2];

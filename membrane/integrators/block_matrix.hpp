@@ -11,28 +11,51 @@
 /// the product streams only x, y and one row index per node. Otherwise
 /// (unstructured meshes) the plain block storage is used.
 ///
+/// Two vector layouts. Interleaved (the solver's): dof 3 i + c. Planar (the
+/// CG iteration's): component c of node i at c n + i, three contiguous
+/// planes. With shared rows, consecutive nodes of one stored row (a "run",
+/// e.g. the interior of a grid line) then apply the same nine numbers per
+/// block to consecutive entries of each plane: a loop the compiler
+/// vectorizes (core/parallel.hpp compiles it for AVX-512, AVX2 and SSE2).
+/// The interleaved product of a shared-row matrix goes through the planar
+/// kernel (two extra passes to transpose, still several times faster).
+///
 /// Contract: built from a row-major CSR whose pattern consists of full 3x3
 /// blocks in node order (what assemble() produces); values are copied, so
-/// later changes of the CSR matrix are not seen.
+/// later changes of the CSR matrix are not seen. multiply() and
+/// multiplyDot() use scratch of the object: do not call them on one object
+/// from two threads at once.
 
 #include "membrane/model/assembly.hpp"
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <vector>
 
 namespace lamina::membrane {
+
+/// Copies nodes [@p i0, @p i1) of the interleaved vector @p a (dof 3 i + c)
+/// into the planar vector @p p (c n + i), @p n nodes in all.
+void toPlanar(const double* a, double* p, int n, int i0, int i1);
+/// Copies nodes [@p i0, @p i1) of the planar @p p into the interleaved @p a.
+void fromPlanar(const double* p, double* a, int n, int i0, int i1);
 
 /// 3x3-block compressed sparse rows.
 class BlockMatrix {
 public:
   BlockMatrix() = default;
-  /// Copies @p A (3n x 3n, full 3x3 blocks).
-  explicit BlockMatrix(const SparseMatrix& A);
-  /// y = A x (OpenMP over block rows for large matrices).
+  /// Copies @p A (3n x 3n, full 3x3 blocks); @p share_rows = false keeps
+  /// the plain blocks even on a repeated stencil (benchmarks, tests).
+  explicit BlockMatrix(const SparseMatrix& A, bool share_rows = true);
+  /// y = A x, interleaved vectors (OpenMP over block rows for large matrices).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
-  /// y = A x and @return x.y, in one pass.
+  /// y = A x and @return x.y, in one pass (interleaved vectors).
   double multiplyDot(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  /// Planar y = A x on the node rows [@p begin, @p end) (x whole, y written
+  /// only on those rows; no threads: the caller splits the rows).
+  /// @return the part of x.y from those rows.
+  double multiplyPlanar(const double* x, double* y, int begin, int end) const;
   /// @return the diagonal 3x3 block of node @p i
   Eigen::Matrix3d diagonalBlock(int i) const;
   /// @return number of node rows
@@ -41,19 +64,44 @@ public:
   int rowOf(int i) const { return kind_.empty() ? i : kind_[i]; }
   /// @return number of distinct stored rows (0 = no row sharing)
   int sharedRows() const { return kind_.empty() ? 0 : static_cast<int>(kstart_.size()) - 1; }
+  /// @return number of stored rows (distinct rows, or one per node)
+  int storedRows() const { return kind_.empty() ? n_ : sharedRows(); }
+
+  /// Calls @p f(b, e, row) for the runs [b, e) of consecutive nodes in
+  /// [@p begin, @p end) that share stored row @p row (one node per call
+  /// without row sharing), in node order.
+  template <class F>
+  void forEachRun(int begin, int end, F&& f) const {
+    if (kind_.empty()) {
+      for (int i = begin; i < end; ++i)
+        f(i, i + 1, i);
+      return;
+    }
+    // run_begin_ is sorted; the run holding node `begin` is the last one starting at or before it.
+    auto k = std::upper_bound(run_begin_.begin(), run_begin_.end(), begin) - run_begin_.begin() - 1;
+    for (int b = begin; b < end; ++k) {
+      const int e = std::min(end, run_begin_[k + 1]);
+      f(b, e, kind_[b]);
+      b = e;
+    }
+  }
 
 private:
   void shareRepeatedRows();
   template <bool Dot>
   double product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
+  template <bool Dot>
+  double productViaPlanar(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   int n_ = 0;
-  std::vector<int> kind_;    // per node: its stored row (empty = plain storage)
-  std::vector<int> kstart_;  // per stored row: first entry
-  std::vector<int> koff_;    // per entry: column node minus row node
-  std::vector<double> kval_; // per entry: 9 values, row-major
-  std::vector<int> start_;   // block row pointers
-  std::vector<int> col_;     // block column (node) of each block
-  std::vector<double> val_;  // 9 values per block, row-major
+  std::vector<int> kind_;               // per node: its stored row (empty = plain storage)
+  std::vector<int> kstart_;             // per stored row: first entry
+  std::vector<int> koff_;               // per entry: column node minus row node
+  std::vector<double> kval_;            // per entry: 9 values, row-major
+  std::vector<int> run_begin_;          // first node of each run of equal kind_, then n
+  std::vector<int> start_;              // block row pointers
+  std::vector<int> col_;                // block column (node) of each block
+  std::vector<double> val_;             // 9 values per block, row-major
+  mutable std::vector<double> xs_, ys_; // planar scratch of multiply() (shared rows)
 };
 
 } // namespace lamina::membrane

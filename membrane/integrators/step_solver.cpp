@@ -1,6 +1,7 @@
 #include "membrane/integrators/step_solver.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 #include <Eigen/SparseCholesky>
 #ifdef LAMINA_HAVE_CHOLMOD
@@ -8,6 +9,7 @@
 #endif
 
 #include <cmath>
+#include <cstddef>
 
 namespace lamina::membrane {
 
@@ -15,6 +17,73 @@ namespace {
 /// Below this many rows threads cost more than they save (and a busy core
 /// turns every barrier into a scheduler time slice).
 constexpr int kParallelMin = 30000;
+
+/// The CG vector updates on nodes [i0, i1) of planar vectors (plane stride
+/// n). P: the 3x3 preconditioner block, row-major, the same for all nodes
+/// (a run of shared rows) or, with PerNode, 9 numbers per node from node 0.
+/// update: x += alpha p, r -= alpha q, z = P r; adds z.r to rz and r.r to rr.
+/// direction: p = P r + beta p (p = P r when beta = 0); adds z.r, r.r the same way.
+template <bool PerNode>
+LAMINA_VECTOR_CLONES void updateNodes(const double* P, int n, double alpha, double* __restrict x,
+                                      double* __restrict r, const double* __restrict p,
+                                      const double* __restrict q, int i0, int i1, double& rz,
+                                      double& rr) {
+  const std::ptrdiff_t n1 = n, n2 = 2 * n1;
+  double s = 0, t = 0;
+#pragma omp simd reduction(+ : s, t)
+  for (int i = i0; i < i1; ++i) {
+    const double* m = PerNode ? P + 9 * static_cast<std::ptrdiff_t>(i) : P;
+    x[i] += alpha * p[i];
+    x[n1 + i] += alpha * p[n1 + i];
+    x[n2 + i] += alpha * p[n2 + i];
+    const double r0 = r[i] - alpha * q[i];
+    const double r1 = r[n1 + i] - alpha * q[n1 + i];
+    const double r2 = r[n2 + i] - alpha * q[n2 + i];
+    r[i] = r0;
+    r[n1 + i] = r1;
+    r[n2 + i] = r2;
+    const double z0 = m[0] * r0 + m[1] * r1 + m[2] * r2;
+    const double z1 = m[3] * r0 + m[4] * r1 + m[5] * r2;
+    const double z2 = m[6] * r0 + m[7] * r1 + m[8] * r2;
+    s += z0 * r0 + z1 * r1 + z2 * r2;
+    t += r0 * r0 + r1 * r1 + r2 * r2;
+  }
+  rz += s;
+  rr += t;
+}
+
+template <bool PerNode>
+LAMINA_VECTOR_CLONES void directionNodes(const double* P, int n, double beta,
+                                         const double* __restrict r, double* __restrict p, int i0,
+                                         int i1, double& rz, double& rr) {
+  const std::ptrdiff_t n1 = n, n2 = 2 * n1;
+  double s = 0, t = 0;
+  if (beta == 0) // p may hold anything (NaN) before the first direction
+    for (int i = i0; i < i1; ++i)
+      p[i] = p[n1 + i] = p[n2 + i] = 0;
+#pragma omp simd reduction(+ : s, t)
+  for (int i = i0; i < i1; ++i) {
+    const double* m = PerNode ? P + 9 * static_cast<std::ptrdiff_t>(i) : P;
+    const double r0 = r[i], r1 = r[n1 + i], r2 = r[n2 + i];
+    const double z0 = m[0] * r0 + m[1] * r1 + m[2] * r2;
+    const double z1 = m[3] * r0 + m[4] * r1 + m[5] * r2;
+    const double z2 = m[6] * r0 + m[7] * r1 + m[8] * r2;
+    p[i] = z0 + beta * p[i];
+    p[n1 + i] = z1 + beta * p[n1 + i];
+    p[n2 + i] = z2 + beta * p[n2 + i];
+    s += z0 * r0 + z1 * r1 + z2 * r2;
+    t += r0 * r0 + r1 * r1 + r2 * r2;
+  }
+  rz += s;
+  rr += t;
+}
+
+/// Per-thread partial sums of the CG reductions: two slots used in turn (a
+/// slot is rewritten only after a barrier that follows every read of it),
+/// one cache line per thread.
+struct alignas(64) Partial {
+  double v[2][2] = {{0, 0}, {0, 0}};
+};
 } // namespace
 
 void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
@@ -59,14 +128,16 @@ StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double to
   // Block-Jacobi: invert the 3x3 diagonal block of every node.
   Ab_ = BlockMatrix(A);
   const int nn = n / 3;
-  // One inverse per stored row: shared rows share their inverse too (fewer bytes per iteration).
-  block_inverse_.resize(Ab_.sharedRows() > 0 ? Ab_.sharedRows() : nn);
-  for (int i = 0; i < nn; ++i)
-    block_inverse_[Ab_.rowOf(i)] = Ab_.diagonalBlock(i).inverse();
-  r_.resize(n);
-  z_.resize(n);
-  p_.resize(n);
-  q_.resize(n);
+  // One inverse per stored row (row-major): shared rows share their inverse too.
+  block_inverse_.resize(9 * static_cast<std::size_t>(Ab_.storedRows()));
+  for (int i = 0; i < nn; ++i) {
+    const Eigen::Matrix3d inv = Ab_.diagonalBlock(i).inverse();
+    for (int c = 0; c < 3; ++c)
+      for (int d = 0; d < 3; ++d)
+        block_inverse_[9 * static_cast<std::size_t>(Ab_.rowOf(i)) + 3 * c + d] = inv(c, d);
+  }
+  for (Eigen::VectorXd* v : {&xp_, &rp_, &pp_, &qp_})
+    v->resize(n);
 }
 
 StepSolver::~StepSolver() = default;
@@ -128,6 +199,11 @@ void StepSolver::remember(const Eigen::VectorXd& x) {
 
 void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations,
                     bool have_residual) {
+  // Preconditioned CG on planar copies of x, r, p, q inside one parallel
+  // region: every thread keeps its static share of the nodes in all loops;
+  // three barriers per iteration (after A p, after the update, after the
+  // new direction). z = P r is not stored: the update and the direction
+  // recompute it from r (a 3x3 product is cheaper than a pass over memory).
   const int n = static_cast<int>(b.size());
   const int nn = n / 3;
   const double bnorm = b.norm();
@@ -137,47 +213,108 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   }
   if (x.size() != n)
     x = Eigen::VectorXd::Zero(n);
-  if (!have_residual) {
-    Ab_.multiply(x, q_);
-    r_ = b - q_;
-  }
   const double target = tolerance_ * bnorm;
-  double rr = r_.squaredNorm();
-  if (std::sqrt(rr) <= target)
-    return;
-  double rz = 0;
-#pragma omp parallel for reduction(+ : rz) schedule(static) if (n > kParallelMin)
-  for (int i = 0; i < nn; ++i) {
-    z_.segment<3>(3 * i) = block_inverse_[Ab_.rowOf(i)] * r_.segment<3>(3 * i);
-    rz += z_.segment<3>(3 * i).dot(r_.segment<3>(3 * i));
-  }
-  p_ = z_;
-  for (iterations = 1; iterations <= max_iterations_; ++iterations) {
-    const double pq = Ab_.multiplyDot(p_, q_);
-    if (!(pq > 0) || !std::isfinite(pq))
-      throw DivergenceError("CG breakdown: A is not positive definite or the step diverged");
-    const double alpha = rz / pq;
-    double rz_new = 0;
-    rr = 0;
-#pragma omp parallel for reduction(+ : rz_new, rr) schedule(static) if (n > kParallelMin)
-    for (int i = 0; i < nn; ++i) {
-      x.segment<3>(3 * i) += alpha * p_.segment<3>(3 * i);
-      r_.segment<3>(3 * i) -= alpha * q_.segment<3>(3 * i);
-      z_.segment<3>(3 * i) = block_inverse_[Ab_.rowOf(i)] * r_.segment<3>(3 * i);
-      rz_new += z_.segment<3>(3 * i).dot(r_.segment<3>(3 * i));
-      rr += r_.segment<3>(3 * i).squaredNorm();
+  const bool per_node = Ab_.sharedRows() == 0;
+  const double* P = block_inverse_.data();
+  double* xp = xp_.data();
+  double* rp = rp_.data();
+  double* pp = pp_.data();
+  double* qp = qp_.data();
+  // Applies the update or direction kernel to the nodes [i0, i1), run by run.
+  auto update = [&](double alpha, int i0, int i1, double& rz, double& rr) {
+    if (per_node)
+      return updateNodes<true>(P, nn, alpha, xp, rp, pp, qp, i0, i1, rz, rr);
+    Ab_.forEachRun(i0, i1, [&](int r0, int r1, int row) {
+      updateNodes<false>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, alpha, xp, rp, pp, qp, r0,
+                         r1, rz, rr);
+    });
+  };
+  auto direction = [&](double beta, int i0, int i1, double& rz, double& rr) {
+    if (per_node)
+      return directionNodes<true>(P, nn, beta, rp, pp, i0, i1, rz, rr);
+    Ab_.forEachRun(i0, i1, [&](int r0, int r1, int row) {
+      directionNodes<false>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, beta, rp, pp, r0, r1, rz,
+                            rr);
+    });
+  };
+  const bool parallel = n > kParallelMin;
+  std::vector<Partial> partial(parallel ? omp_get_max_threads() : 1);
+  enum class Outcome { converged, breakdown, limit } outcome = Outcome::limit;
+  double final_rr = 0;
+  int done_iterations = 0;
+#pragma omp parallel if (parallel)
+  {
+    const int tid = omp_get_thread_num(), nt = omp_get_num_threads();
+    const auto [i0, i1] = core::threadRange(nn);
+    // Sums slot k of every thread's partials, in thread order (the same
+    // result on every thread, so all take the same branch).
+    auto total = [&](int slot, int k) {
+      double s = 0;
+      for (int t = 0; t < nt; ++t)
+        s += partial[t].v[slot][k];
+      return s;
+    };
+    toPlanar(x.data(), xp, nn, i0, i1);
+    toPlanar(have_residual ? r_.data() : b.data(), rp, nn, i0, i1);
+#pragma omp barrier
+    if (!have_residual) { // r = b - A x
+      Ab_.multiplyPlanar(xp, qp, i0, i1);
+      for (int c = 0; c < 3; ++c)
+        for (int i = i0; i < i1; ++i)
+          rp[c * static_cast<std::ptrdiff_t>(nn) + i] -=
+              qp[c * static_cast<std::ptrdiff_t>(nn) + i];
     }
+    double rz_part = 0, rr_part = 0;
+    direction(0.0, i0, i1, rz_part, rr_part); // p = z = P r
+    partial[tid].v[1][0] = rz_part;
+    partial[tid].v[1][1] = rr_part;
+#pragma omp barrier
+    double rz = total(1, 0), rr = total(1, 1);
+    int it = 0;
+    Outcome result = Outcome::limit;
     if (std::sqrt(rr) <= target)
-      return;
-    const double beta = rz_new / rz;
-    rz = rz_new;
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
-    for (int i = 0; i < n; ++i)
-      p_[i] = z_[i] + beta * p_[i];
+      result = Outcome::converged;
+    else
+      for (it = 1; it <= max_iterations_; ++it) {
+        partial[tid].v[0][0] = Ab_.multiplyPlanar(pp, qp, i0, i1); // q = A p, p.q
+#pragma omp barrier
+        const double pq = total(0, 0);
+        if (!(pq > 0) || !std::isfinite(pq)) {
+          result = Outcome::breakdown;
+          break;
+        }
+        const double alpha = rz / pq;
+        rz_part = rr_part = 0;
+        update(alpha, i0, i1, rz_part, rr_part);
+        partial[tid].v[1][0] = rz_part;
+        partial[tid].v[1][1] = rr_part;
+#pragma omp barrier
+        const double rz_new = total(1, 0);
+        rr = total(1, 1);
+        if (std::sqrt(rr) <= target) {
+          result = Outcome::converged;
+          break;
+        }
+        const double beta = rz_new / rz;
+        rz = rz_new;
+        rz_part = rr_part = 0;
+        direction(beta, i0, i1, rz_part, rr_part);
+#pragma omp barrier
+      }
+    fromPlanar(xp, x.data(), nn, i0, i1);
+    if (tid == 0) {
+      outcome = result;
+      final_rr = rr;
+      done_iterations = std::min(it, max_iterations_);
+    }
   }
-  throw DivergenceError("CG did not converge in " + std::to_string(max_iterations_) +
-                        " iterations (relative residual " + std::to_string(std::sqrt(rr) / bnorm) +
-                        ")");
+  iterations = done_iterations;
+  if (outcome == Outcome::breakdown)
+    throw DivergenceError("CG breakdown: A is not positive definite or the step diverged");
+  if (outcome == Outcome::limit)
+    throw DivergenceError("CG did not converge in " + std::to_string(max_iterations_) +
+                          " iterations (relative residual " +
+                          std::to_string(std::sqrt(final_rr) / bnorm) + ")");
 }
 
 } // namespace lamina::membrane

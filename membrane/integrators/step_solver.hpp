@@ -6,7 +6,9 @@
 /// Contract: the matrix is set up once (constructor) and reused for every
 /// step. "cg": conjugate gradients preconditioned by the inverse 3x3 node
 /// blocks of A, warm-started from the x passed in, stopped when
-/// ||b - A x|| <= tolerance ||b||. "cholesky": a sparse Cholesky
+/// ||b - A x|| <= tolerance ||b||. The iteration runs on planar copies of
+/// its vectors (BlockMatrix) in one OpenMP region for matrices above 30,000
+/// rows. "cholesky": a sparse Cholesky
 /// factorization (CHOLMOD supernodal when built with it, else Eigen's
 /// SimplicialLDLT), exact to round-off.
 ///
@@ -56,11 +58,11 @@ private:
   std::string kind_;
   double tolerance_;
   int max_iterations_;
-  std::vector<Eigen::Matrix3d> block_inverse_; // block-Jacobi preconditioner
-  int projection_ = 0;                         // max basis size (0 = off)
-  std::vector<Eigen::VectorXd> X_, AX_;        // A-orthonormal past solutions and A X
-  Eigen::VectorXd x0_, d_, ad_;
-  Eigen::VectorXd r_, z_, p_, q_;
+  std::vector<double> block_inverse_;   // block-Jacobi: 9 per stored row of Ab_, row-major
+  int projection_ = 0;                  // max basis size (0 = off)
+  std::vector<Eigen::VectorXd> X_, AX_; // A-orthonormal past solutions and A X
+  Eigen::VectorXd x0_, d_, ad_, r_;     // projection: start, new direction, A d, residual
+  Eigen::VectorXd xp_, rp_, pp_, qp_;   // CG vectors, planar (component c of node i at c n + i)
   struct Direct;
   std::unique_ptr<Direct> direct_;
   long total_iterations_ = 0, solves_ = 0;

@@ -210,5 +210,16 @@ TEST(MembraneElement, BlockProductsEqualTheAssembledMatrix) {
     const double dot = B.multiplyDot(x, y);
     EXPECT_LT((y - ref).cwiseAbs().maxCoeff(), 1e-13 * ref.cwiseAbs().maxCoeff());
     EXPECT_NEAR(dot, x.dot(ref), 1e-12 * std::abs(x.dot(ref)) + 1e-12 * ref.norm() * x.norm());
+    // The planar product of the CG, on row ranges split anywhere (as the
+    // threads split them: inside runs of shared rows too), same bounds.
+    const int n = B.nodes();
+    Eigen::VectorXd xp(3 * n), yp = Eigen::VectorXd::Constant(3 * n, 1e300), yi(3 * n);
+    toPlanar(x.data(), xp.data(), n, 0, n);
+    double pdot = 0;
+    for (const auto& [b, e] : {std::pair{0, 17}, {17, 400}, {400, 401}, {401, n}})
+      pdot += B.multiplyPlanar(xp.data(), yp.data(), b, e);
+    fromPlanar(yp.data(), yi.data(), n, 0, n);
+    EXPECT_LT((yi - ref).cwiseAbs().maxCoeff(), 1e-13 * ref.cwiseAbs().maxCoeff());
+    EXPECT_NEAR(pdot, x.dot(ref), 1e-12 * std::abs(x.dot(ref)) + 1e-12 * ref.norm() * x.norm());
   }
 }
