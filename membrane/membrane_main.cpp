@@ -13,7 +13,8 @@
 
 int main(int argc, char** argv) {
   using namespace lamina;
-  CLI::App app{"lamina membrane solver (Newmark, linear triangles, 3 DOF per node)"};
+  CLI::App app{
+      "lamina membrane solver (linear or large-deflection triangles, Newmark or explicit)"};
   app.require_subcommand(1);
   std::string case_path, out_dir, library;
   std::vector<std::string> overrides;

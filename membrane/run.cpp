@@ -7,6 +7,7 @@
 #include "membrane/io/output.hpp"
 #include "membrane/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -18,14 +19,20 @@ namespace {
 /// One run: the method reads as set-up, then steps with outputs, then summary.
 class MembraneRun {
 public:
-  MembraneRun(const Model& model, const RunOptions& options) : model_(model), opt_(options) {}
+  MembraneRun(const Model& model, const RunOptions& options)
+      : model_(model), opt_(options),
+        extra_energy_(!model.springs.empty() || model.time.damping > 0) {}
 
   nlohmann::json run() {
     const auto start = std::chrono::steady_clock::now();
     std::filesystem::create_directories(opt_.out_dir);
     Simulation sim(model_); // assemble K, M; build A; set up its solver
     openOutputs(sim);
-    const long steps = std::lround(model_.time.t_end / model_.time.dt);
+    const double dt = sim.integrator().timeStep();
+    // Newmark: t_end is a multiple of dt by the case; explicit: cover t_end.
+    const long steps = model_.time.integrator == IntegratorKind::Newmark
+                           ? std::lround(model_.time.t_end / dt)
+                           : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
     core::ProgressLine progress("steps", std::max(1L, steps), opt_.quiet);
     record(sim, true, true);
     std::optional<DivergenceError> failure;
@@ -44,7 +51,7 @@ public:
     }
     step_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
     if (failure && fields_)
-      fields_->write(sim.time(), sim.u(), sim.v()); // last finite state
+      writeFields(sim); // last finite state
     if (failure)
       record(sim, false, false);
     progress.finish();
@@ -60,10 +67,21 @@ public:
   }
 
 private:
-  void openOutputs(const Simulation&) {
+  void writeFields(const Simulation& sim) {
+    auto cells = sim.structure().cellFields(sim.u());
+    if (sim.structure().hasFailureThresholds()) {
+      const auto& f = sim.failure();
+      CellField map{"failure_time", 1, f.time};
+      map.values.resize(static_cast<size_t>(model_.mesh.numElements()), -1.0);
+      cells.push_back(std::move(map));
+    }
+    fields_->write(sim.time(), sim.u(), sim.v(), cells);
+  }
+
+  void openOutputs(const Simulation& sim) {
     if (model_.output.fields)
-      fields_ =
-          std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh, model_.sections);
+      fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh,
+                                              sim.structure().deformedGeometry());
     std::string h = "t";
     for (const auto& p : model_.probes)
       for (const char* c : {"_ux", "_uy", "_uz", "_vx", "_vy", "_vz"})
@@ -71,15 +89,17 @@ private:
     probes_ = std::make_unique<CsvWriter>(opt_.out_dir / "probes.csv", h);
     energy_ = std::make_unique<CsvWriter>(
         opt_.out_dir / "energy.csv",
-        "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance");
-    if (!model_.constraints.empty()) {
+        "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance" +
+            std::string(extra_energy_ ? ",spring_work,damping_work" : ""));
+    const auto names = sim.reactionNames();
+    if (!names.empty()) {
       std::string r = "t";
-      for (const auto& c : model_.constraints)
+      for (const auto& c : names)
         for (const char* k : {"_Rx", "_Ry", "_Rz"})
-          r += "," + c.name + k;
+          r += "," + c + k;
       reactions_ = std::make_unique<CsvWriter>(opt_.out_dir / "reactions.csv", r);
     }
-    peak_reaction_.assign(model_.constraints.size(), 0.0);
+    peak_reaction_.assign(names.size(), 0.0);
     probe_peak_.assign(model_.probes.size(), 0.0);
   }
 
@@ -89,6 +109,7 @@ private:
     const int n = model_.mesh.numNodes();
     for (int i = 0; i < n; ++i) {
       max_abs_w_ = std::max(max_abs_w_, std::abs(u[3 * i + 2]));
+      max_disp_ = std::max(max_disp_, u.segment<3>(3 * i).norm());
       max_speed_ = std::max(max_speed_, v.segment<3>(3 * i).norm());
     }
     std::vector<double> row{sim.time()};
@@ -104,11 +125,14 @@ private:
     if (reactions_) {
       const auto sums = sim.reactionSums();
       std::vector<double> r{sim.time()};
+      Eigen::Vector3d total = Eigen::Vector3d::Zero();
       for (size_t k = 0; k < sums.size(); ++k) {
         for (int c = 0; c < 3; ++c)
           r.push_back(sums[k][c]);
         peak_reaction_[k] = std::max(peak_reaction_[k], sums[k].norm());
+        total += sums[k];
       }
+      peak_total_reaction_ = std::max(peak_total_reaction_, total.norm());
       reactions_->row(r);
     }
     if (energy) {
@@ -134,11 +158,17 @@ private:
       max_balance_ = std::max(max_balance_, std::abs(e.balance));
       energy_scale_ = std::max({energy_scale_, total, std::abs(e.external_work),
                                 std::abs(e.reaction_work), std::abs(e.drag_work)});
-      energy_->row({sim.time(), e.kinetic, e.strain, e.external_work, e.reaction_work, e.drag_work,
-                    total, e.balance});
+      std::vector<double> row{sim.time(),      e.kinetic,   e.strain, e.external_work,
+                              e.reaction_work, e.drag_work, total,    e.balance};
+      if (extra_energy_) {
+        row.push_back(e.spring_work);
+        row.push_back(e.damping_work);
+      }
+      energy_->row(row);
+      energy_scale_ = std::max({energy_scale_, std::abs(e.spring_work), std::abs(e.damping_work)});
     }
     if (fields && fields_)
-      fields_->write(sim.time(), u, v);
+      writeFields(sim);
   }
 
   void closeOutputs() {
@@ -155,7 +185,7 @@ private:
     s["elements"] = model_.mesh.numElements();
     s["dofs"] = model_.numDofs();
     s["steps"] = sim.steps();
-    s["dt"] = model_.time.dt;
+    s["dt"] = sim.integrator().timeStep();
     s["t_end"] = sim.time();
     s["max_abs_w"] = max_abs_w_;
     s["max_speed"] = max_speed_;
@@ -167,6 +197,8 @@ private:
                    {"reaction_work", e.reaction_work},
                    {"drag_work", e.drag_work},
                    {"balance", e.balance},
+                   {"spring_work", e.spring_work},
+                   {"damping_work", e.damping_work},
                    {"max_abs_balance", max_balance_},
                    {"relative_balance", energy_scale_ > 0 ? max_balance_ / energy_scale_ : 0.0}};
     nlohmann::json probes = nlohmann::json::object();
@@ -183,10 +215,28 @@ private:
     s["probes"] = probes;
     nlohmann::json reac = nlohmann::json::object();
     const auto sums = sim.reactionSums();
-    for (size_t k = 0; k < model_.constraints.size(); ++k)
-      reac[model_.constraints[k].name] = {{"peak", peak_reaction_[k]},
-                                          {"final", {sums[k][0], sums[k][1], sums[k][2]}}};
+    const auto names = sim.reactionNames();
+    for (size_t k = 0; k < names.size(); ++k)
+      reac[names[k]] = {{"peak", peak_reaction_[k]},
+                        {"final", {sums[k][0], sums[k][1], sums[k][2]}}};
     s["reactions"] = reac;
+    s["peak_reaction_total"] = peak_total_reaction_;
+    s["max_displacement"] = max_disp_;
+    s["model"] = model_.kind == ModelKind::LargeDeflection ? "large_deflection" : "linear";
+    s["integrator"] = {{"name", sim.integrator().name()}, {"stable_dt", sim.stableStep()}};
+    if (model_.time.integrator == IntegratorKind::Explicit)
+      s["integrator"]["safety"] = sim.integrator().timeStep() / sim.stableStep();
+    if (sim.structure().hasFailureThresholds()) {
+      const auto& f = sim.failure();
+      s["failure"] =
+          f.first_element < 0
+              ? nlohmann::json{{"element", nullptr}}
+              : nlohmann::json{
+                    {"element", f.first_element},
+                    {"time", f.first_time},
+                    {"criterion", failureName(f.first_criterion)},
+                    {"region", model_.mesh.regions[model_.mesh.region_of[f.first_element]]}};
+    }
     const SolverStats st = sim.integrator().stats();
     s["solver"] = {
         {"type", model_.time.solver},
@@ -200,11 +250,13 @@ private:
 
   const Model& model_;
   RunOptions opt_;
+  bool extra_energy_; // spring and damping columns in energy.csv
   std::unique_ptr<FieldWriter> fields_;
   std::unique_ptr<CsvWriter> probes_, energy_, reactions_;
   std::vector<double> peak_reaction_, probe_peak_;
   Energy last_energy_;
   double max_abs_w_ = 0, max_speed_ = 0, max_balance_ = 0, energy_scale_ = 0;
+  double max_disp_ = 0, peak_total_reaction_ = 0;
   double wall_s_ = 0, step_s_ = 0;
 };
 
@@ -232,6 +284,10 @@ nlohmann::json runCase(const Model& model, const RunOptions& options) {
   nlohmann::json summary = runModel(model, with);
   Model bare = model;
   bare.drags.clear();
+  bare.surface_loads.erase(
+      std::remove_if(bare.surface_loads.begin(), bare.surface_loads.end(),
+                     [](const auto& l) { return l->kind() == WorkKind::Drag; }),
+      bare.surface_loads.end());
   bare.compare_without_drag = false;
   const nlohmann::json other = runModel(bare, without);
   summary["drag_comparison"] = {{"with_drag", peaks(summary)}, {"without_drag", peaks(other)}};

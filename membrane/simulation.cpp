@@ -1,23 +1,54 @@
 #include "membrane/simulation.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "membrane/integrators/central_difference.hpp"
 #include "membrane/integrators/newmark.hpp"
 #include "membrane/integrators/step_solver.hpp"
+#include "membrane/model/large_deflection.hpp"
 #include "membrane/model/linear_membrane.hpp"
 
 namespace lamina::membrane {
 
+namespace {
+std::unique_ptr<Structure> makeStructure(const Model& model) {
+  if (model.kind == ModelKind::LargeDeflection)
+    return std::make_unique<LargeDeflection>(model);
+  return std::make_unique<LinearMembrane>(model);
+}
+
+/// The explicit step: time.dt when given (at most the stable step), else safety x stable.
+double explicitStep(const TimeSettings& ts, double stable) {
+  if (ts.dt > 0) {
+    if (ts.dt > stable)
+      throw Error("time.dt = " + core::formatShort(ts.dt) + " s exceeds the stable step " +
+                  core::formatShort(stable) +
+                  " s of the explicit integrator (leave dt out for safety x stable step)");
+    return ts.dt;
+  }
+  return ts.safety * stable;
+}
+} // namespace
+
 Simulation::Simulation(const Model& model)
-    : model_(model), structure_(std::make_unique<LinearMembrane>(model)), loads_(model),
+    : model_(model), structure_(makeStructure(model)), loads_(model),
       cons_(model.constraints, model.numDofs()) {
-  integrator_ = std::make_unique<Newmark>(model, *structure_, loads_, cons_);
+  stable_dt_ = structure_->stableStep();
+  if (model.time.integrator == IntegratorKind::Explicit)
+    integrator_ = std::make_unique<CentralDifference>(model, *structure_, loads_, cons_,
+                                                      explicitStep(model.time, stable_dt_),
+                                                      model.time.damping);
+  else
+    integrator_ = std::make_unique<Newmark>(model, *structure_, loads_, cons_);
   const int ndof = model.numDofs();
   state_.u = model.u0.size() == ndof ? model.u0 : Eigen::VectorXd::Zero(ndof);
   state_.v = model.v0.size() == ndof ? model.v0 : Eigen::VectorXd::Zero(ndof);
   cons_.prescribe(0.0, state_.v);
   integrator_->init(state_);
+  u0_ = structure_->strainEnergy(state_.u);
   const Energy e = energy();
   e0_ = e.kinetic + e.strain;
+  structure_->checkFailure(state_.t, state_.u, failure_);
 }
 
 Simulation::~Simulation() = default;
@@ -26,17 +57,34 @@ void Simulation::step() {
   integrator_->step(state_);
   works_.add(integrator_->increment(), integrator_->previousForces(), integrator_->forces(), cons_,
              loads_.hasExternal(), loads_.hasDrag());
+  if (structure_->hasFailureThresholds())
+    structure_->checkFailure(state_.t, state_.u, failure_);
 }
 
 Energy Simulation::energy() const {
   Eigen::VectorXd y;
   multiply(structure_->mass(), state_.v, y);
   const double T = 0.5 * state_.v.dot(y);
-  return works_.energy(T, structure_->strainEnergy(state_.u), e0_);
+  // Without a potential (tension-only fabric) U is the internal work done since t = 0.
+  const double U =
+      structure_->hasPotential() ? structure_->strainEnergy(state_.u) : u0_ + works_.internal;
+  return works_.energy(T, U, e0_);
 }
 
 std::vector<Eigen::Vector3d> Simulation::reactionSums() const {
-  return cons_.sums(integrator_->forces().reaction);
+  auto s = cons_.sums(integrator_->forces().reaction);
+  for (const auto& f : loads_.springSums(state_.u))
+    s.push_back(f);
+  return s;
+}
+
+std::vector<std::string> Simulation::reactionNames() const {
+  std::vector<std::string> names;
+  for (const auto& c : model_.constraints)
+    names.push_back(c.name);
+  for (const auto& s : model_.springs)
+    names.push_back(s->name());
+  return names;
 }
 
 Eigen::Vector3d Simulation::dragSum() const {

@@ -5,7 +5,11 @@
 /// and the shared energy bookkeeping (integrators/energy.hpp).
 ///
 /// The scheme and its equations are documented with each integrator
-/// (integrators/newmark.hpp for the paper's scheme).
+/// (integrators/newmark.hpp for the paper's scheme,
+/// integrators/central_difference.hpp for the explicit one). The structure
+/// is the model's kind (LinearMembrane or LargeDeflection); the explicit
+/// step is time.dt when given (it must not exceed the stable step), else
+/// time.safety x the structure's stable step.
 
 #include "membrane/integrators/energy.hpp"
 #include "membrane/integrators/time_integrator.hpp"
@@ -52,8 +56,15 @@ public:
   Energy energy() const;
   /// @return energy at t = 0 (T + U)
   double initialEnergy() const { return e0_; }
-  /// @return reaction force summed per constraint set (N), current step
+  /// @return reaction force summed per constraint set, then per spring set
+  /// (the springs' force on the structure) (N), current step
   std::vector<Eigen::Vector3d> reactionSums() const;
+  /// @return the names of the reaction sets (constraints, then springs)
+  std::vector<std::string> reactionNames() const;
+  /// @return the stable step of explicit central differences (s, no safety factor)
+  double stableStep() const { return stable_dt_; }
+  /// @return the failure record (empty time list without thresholds)
+  const FailureRecord& failure() const { return failure_; }
   /// @return drag force summed over all nodes (N), current step
   Eigen::Vector3d dragSum() const;
   /// @return global stiffness (linear model only; throws otherwise)
@@ -81,7 +92,8 @@ private:
   std::unique_ptr<TimeIntegrator> integrator_;
   State state_;
   Works works_;
-  double e0_ = 0;
+  FailureRecord failure_;
+  double e0_ = 0, u0_ = 0, stable_dt_ = 0;
 };
 
 } // namespace lamina::membrane

@@ -8,6 +8,12 @@ void Works::add(const Eigen::VectorXd& du, const StateForces& f0, const StateFor
     external += 0.5 * du.dot(f0.external + f1.external);
   if (has_drag)
     drag += 0.5 * du.dot(f0.drag + f1.drag);
+  if (f1.spring.size())
+    spring += 0.5 * du.dot(f0.spring + f1.spring);
+  if (f1.damping.size())
+    damping += 0.5 * du.dot(f0.damping + f1.damping);
+  if (f1.internal.size())
+    internal += 0.5 * du.dot(f0.internal + f1.internal);
   for (size_t k = 0; k < cons.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);
     reaction += 0.5 * du[cons.dofs()[k]] * (f0.reaction[i] + f1.reaction[i]);
@@ -21,7 +27,9 @@ Energy Works::energy(double T, double U, double e0) const {
   e.external_work = external;
   e.reaction_work = reaction;
   e.drag_work = drag;
-  e.balance = T + U - e0 - external - reaction - drag;
+  e.spring_work = spring;
+  e.damping_work = damping;
+  e.balance = T + U - e0 - external - reaction - drag - spring - damping;
   return e;
 }
 

@@ -4,8 +4,10 @@
 ///
 /// Works by the trapezoidal rule over each step,
 ///   W += (u_{n+1} - u_n).(F_n + F_{n+1}) / 2,
-/// for the external loads, the drag and the reactions (at constrained DOFs);
-/// balance = T + U - E_0 - W. For the paper's Newmark scheme (beta1 = beta2
+/// for the external loads, the drag, the springs, the damping and the
+/// reactions (at constrained DOFs); balance = T + U - E_0 - W. When the
+/// model's strain energy is not a potential (tension-only fabric), U is the
+/// internal work integrated the same way from U(u_0). For the paper's Newmark scheme (beta1 = beta2
 /// = 1/2, alpha = 0) the balance is zero in exact arithmetic.
 
 #include "membrane/integrators/time_integrator.hpp"
@@ -20,6 +22,8 @@ struct Energy {
   double external_work = 0; ///< work of the loads since t = 0
   double reaction_work = 0; ///< work of the constraint reactions since t = 0
   double drag_work = 0;     ///< work of the drag since t = 0 (<= 0: dissipated)
+  double spring_work = 0;   ///< work of the springs to the ground since t = 0
+  double damping_work = 0;  ///< work of the mass-proportional damping since t = 0 (<= 0)
   double balance = 0;       ///< E - E0 - W (all works); round-off for the paper's scheme
 };
 
@@ -28,6 +32,9 @@ struct Works {
   double external = 0; ///< loads (J)
   double reaction = 0; ///< reactions (J)
   double drag = 0;     ///< drag (J)
+  double spring = 0;   ///< springs (J)
+  double damping = 0;  ///< damping (J)
+  double internal = 0; ///< internal force, sum of du.f_int (J; when the scheme keeps f_int)
 
   /// Adds one step: displacement increment @p du, forces @p f0 at its start
   /// and @p f1 at its end; @p external and @p drag say whether those forces exist.

@@ -139,20 +139,6 @@ void Newmark::divergedInSolve(const State& s, const DivergenceError& e, double t
   throw DivergenceError(os.str());
 }
 
-void Newmark::nonFinite(const State& s, double t1) const {
-  int bad = 0;
-  for (int i = 0; i < structure_.numDofs(); ++i)
-    if (!std::isfinite(u1_[i]) || !std::isfinite(v1_[i]) || !std::isfinite(a1_[i])) {
-      bad = i / 3;
-      break;
-    }
-  const auto& p = model_.mesh.nodes[bad];
-  std::ostringstream os;
-  os << "non-finite state at t = " << t1 << " s (step " << s.step + 1 << "), node " << bad
-     << " at (" << p.x() << ", " << p.y() << ")";
-  throw DivergenceError(os.str());
-}
-
 void Newmark::step(State& s) {
   const auto& ts = model_.time;
   const double tau = ts.dt, alpha = ts.hht_alpha;
@@ -218,7 +204,7 @@ void Newmark::step(State& s) {
 
   // Non-finite state: stop before committing it.
   if (!u1_.allFinite() || !v1_.allFinite() || !a1_.allFinite())
-    nonFinite(s, t1);
+    throwNonFinite(model_.mesh, s, t1, u1_, v1_, a1_);
 
   // Commit.
   du_ = u1_ - s.u;

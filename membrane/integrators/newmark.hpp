@@ -56,7 +56,6 @@ public:
 private:
   void reactions(const State& s, const StateForces& f, Eigen::VectorXd& r) const;
   [[noreturn]] void divergedInSolve(const State& s, const DivergenceError& e, double t1) const;
-  [[noreturn]] void nonFinite(const State& s, double t1) const;
 
   const Model& model_;
   const Structure& structure_;

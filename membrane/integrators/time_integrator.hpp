@@ -22,6 +22,8 @@
 /// The works of the forces and the energy balance are kept outside the
 /// schemes (energy.hpp), from increment() and the forces at both ends.
 
+#include "membrane/model/mesh.hpp"
+
 #include <Eigen/Dense>
 
 #include <string>
@@ -42,6 +44,9 @@ struct StateForces {
   Eigen::VectorXd external; ///< loads F_ext (N, 3 per node)
   Eigen::VectorXd drag;     ///< drag F_drag (N)
   Eigen::VectorXd reaction; ///< R at each constrained DOF, in ConstrainedDofs order (N)
+  Eigen::VectorXd spring;   ///< springs to the ground (N; empty: none)
+  Eigen::VectorXd damping;  ///< mass-proportional damping -c M v (N; empty: none)
+  Eigen::VectorXd internal; ///< internal force f_int (N; empty: not kept by the scheme)
 };
 
 /// Linear-solver statistics of a scheme (zero for explicit schemes).
@@ -74,5 +79,12 @@ public:
   /// @return seconds spent setting the scheme up (matrices, factorizations)
   virtual double setupSeconds() const { return 0; }
 };
+
+/// Throws lamina::DivergenceError for a step from @p s to time @p t1 whose
+/// result @p u1, @p v1, @p a1 is not finite, naming the time, the step and
+/// the first node with a non-finite value; @p hint is appended when not empty.
+[[noreturn]] void throwNonFinite(const Mesh& mesh, const State& s, double t1,
+                                 const Eigen::VectorXd& u1, const Eigen::VectorXd& v1,
+                                 const Eigen::VectorXd& a1, const std::string& hint = "");
 
 } // namespace lamina::membrane

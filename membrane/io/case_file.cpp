@@ -7,7 +7,10 @@
 #include "materials/catalog.hpp"
 #include "materials/layup.hpp"
 #include "materials/library.hpp"
+#include "membrane/loads/element_pressure.hpp"
+#include "membrane/loads/follower_drag.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -215,7 +218,45 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
 }
 
 /// Reads one [[section]]: material by name, inline isotropic/anisotropic, or plies.
-Section readSection(const core::TableReader& r, materials::MaterialSource& res) {
+/// The large-deflection keys of a [[section]] (material axis, pre-stress,
+/// tension_only, failure thresholds); an error under the linear model.
+void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
+  for (const char* key :
+       {"material_axis", "prestress", "tension_only", "failure_strain", "failure_stress"})
+    if (kind == ModelKind::Linear && r.has(key))
+      r.fail(key, "needs model = \"large_deflection\"");
+  if (kind == ModelKind::Linear)
+    return;
+  if (r.has("material_axis")) {
+    const auto v = r.getDoubleArray("material_axis");
+    if (v.size() != 3 || !(Eigen::Vector3d(v[0], v[1], v[2]).norm() > 0))
+      r.fail("material_axis", "expected a non-zero [ax, ay, az]");
+    s.axis = Eigen::Vector3d(v[0], v[1], v[2]).normalized();
+  }
+  if (r.has("prestress")) {
+    const toml::node* node = r.raw("prestress");
+    if (node->is_array()) {
+      const auto v = r.getDoubleArray("prestress");
+      if (v.size() != 3)
+        r.fail("prestress", "expected a tension T (N/m) or [T11, T22, T12] (N/m)");
+      s.prestress = {v[0], v[1], v[2]};
+    } else {
+      const double T = r.getDouble("prestress");
+      s.prestress = {T, T, 0.0};
+    }
+    if (!s.prestress.allFinite())
+      r.fail("prestress", "must be finite");
+  }
+  s.tension_only = r.getBool("tension_only", false);
+  s.failure_strain = r.getDouble("failure_strain", s.failure_strain);
+  s.failure_stress = r.getDouble("failure_stress", s.failure_stress);
+  if (!(s.failure_strain > 0))
+    r.fail("failure_strain", "must be > 0");
+  if (!(s.failure_stress > 0))
+    r.fail("failure_stress", "must be > 0");
+}
+
+Section readSection(const core::TableReader& r, materials::MaterialSource& res, ModelKind kind) {
   Section s;
   std::optional<double> default_thickness;
   const bool by_name = r.has("material"), iso = r.has("E"), aniso = r.has("C"),
@@ -288,6 +329,7 @@ Section readSection(const core::TableReader& r, materials::MaterialSource& res) 
   } catch (const Error& e) {
     r.failHere(e.message());
   }
+  readFabricKeys(r, kind, s);
   return s;
 }
 
@@ -310,32 +352,9 @@ void addTraction(const Mesh& m, const std::vector<int>& elems, const Eigen::Vect
   }
 }
 
-} // namespace
-
-toml::table loadCaseDocument(const std::filesystem::path& path,
-                             const std::vector<std::string>& overrides) {
-  if (!std::filesystem::exists(path))
-    throw Error("case file not found", ErrorContext{path.string(), 0, ""});
-  toml::table doc = core::parseTomlFile(path);
-  for (const auto& o : overrides)
-    core::applyOverride(doc, o);
-  return doc;
-}
-
-Model buildModel(const toml::table& doc, const std::filesystem::path& path,
-                 const MaterialSources& sources) {
-  core::TableReader root(doc, path.string());
-  Model model;
-  model.name = root.getString("name", path.stem().string());
-  (void)root.getString("description", "");
-  model.compare_without_drag = root.getBool("compare_without_drag", false);
-
-  model.mesh = readMesh(root.table("mesh"), path);
+/// [[section]]: one per region; a section without `region` covers every region left.
+void readSections(const core::TableReader& root, const MaterialSources& sources, Model& model) {
   const Mesh& mesh = model.mesh;
-  const int n = mesh.numNodes();
-  const int ndof = 3 * n;
-
-  // Sections: one per region; a section without `region` covers every region left.
   materials::MaterialSource resolver(sources.library_path, sources.catalog_path);
   model.sections.assign(mesh.regions.size(), Section{});
   std::vector<bool> assigned(mesh.regions.size(), false);
@@ -343,7 +362,7 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   if (sections.empty())
     root.fail("section", "at least one [[section]] is required");
   for (const auto& sr : sections) {
-    const Section s = readSection(sr, resolver);
+    const Section s = readSection(sr, resolver, model.kind);
     if (sr.has("region")) {
       const int reg = regionIndex(mesh, sr.getString("region"), sr, "region");
       if (assigned[reg])
@@ -363,13 +382,33 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   for (size_t g = 0; g < assigned.size(); ++g)
     if (!assigned[g])
       root.fail("section", "mesh region '" + mesh.regions[g] + "' has no section");
+}
 
-  // Time and solver.
+/// [time], [solver] and [output].
+void readTimeAndOutput(const core::TableReader& root, Model& model) {
   {
     const auto t = root.table("time");
     auto& ts = model.time;
-    ts.dt = t.getDouble("dt");
-    if (!(ts.dt > 0) || !std::isfinite(ts.dt))
+    const std::string integrator = t.getString(
+        "integrator", model.kind == ModelKind::LargeDeflection ? "explicit" : "newmark");
+    if (integrator != "newmark" && integrator != "explicit")
+      t.fail("integrator", "integrator must be \"newmark\" or \"explicit\"");
+    ts.integrator = integrator == "explicit" ? IntegratorKind::Explicit : IntegratorKind::Newmark;
+    if (ts.integrator == IntegratorKind::Newmark && model.kind == ModelKind::LargeDeflection)
+      t.fail("integrator", "the large-deflection model needs integrator = \"explicit\"");
+    const bool expl = ts.integrator == IntegratorKind::Explicit;
+    for (const char* key : {"safety", "damping"})
+      if (!expl && t.has(key))
+        t.fail(key, "needs integrator = \"explicit\"");
+    ts.safety = t.getDouble("safety", ts.safety);
+    if (!(ts.safety > 0 && ts.safety <= 1))
+      t.fail("safety", "safety factor must be in (0, 1]");
+    ts.damping = t.getDouble("damping", 0.0);
+    if (!(ts.damping >= 0) || !std::isfinite(ts.damping))
+      t.fail("damping", "damping must be >= 0 (1/s)");
+    // Explicit: dt optional (0 = safety x stable step).
+    ts.dt = expl ? t.getDouble("dt", 0.0) : t.getDouble("dt");
+    if ((!expl || t.has("dt")) && (!(ts.dt > 0) || !std::isfinite(ts.dt)))
       t.fail("dt", "time step dt must be > 0");
     ts.t_end = t.getDouble("t_end");
     if (!(ts.t_end > 0))
@@ -422,8 +461,12 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     if (model.output.energy_every < 1)
       o->fail("energy_every", "must be >= 1");
   }
+}
 
-  // Constraints: [[fixed]] and [[strike]].
+/// [[fixed]] and [[strike]]; @return the constraint owning each DOF (-1: free).
+std::vector<int> readConstraints(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
+  const int ndof = 3 * mesh.numNodes();
   std::vector<int> owner(ndof, -1);
   auto addConstraint = [&](const core::TableReader& r, Constraint c, const std::vector<int>& nodes,
                            const std::string& comps, const Eigen::Vector3d& vel) {
@@ -463,7 +506,13 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     addConstraint(r, std::move(c), selectNodes(mesh, sel, r), "xyz", speed * dir);
   }
 
-  // Loads.
+  return owner;
+}
+
+/// [[load]], [[point_mass]] and [gravity].
+void readLoads(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
+  const int ndof = 3 * mesh.numNodes();
   const auto [xmin, xmax, ymin, ymax] = mesh.bounds();
   for (const auto& r : root.tableArray("load")) {
     Load load;
@@ -497,6 +546,12 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
           r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all")
               ? selectElements(mesh, readSelector(r), r)
               : selectElements(mesh, Selector{"all", "", {}, {}, "all"}, r);
+      if (model.kind == ModelKind::LargeDeflection) {
+        // Follows the surface: current normal, current area.
+        model.surface_loads.push_back(
+            std::make_shared<UniformPressure>(load.name, elems, p, TimeProfile::read(r)));
+        continue;
+      }
       addTraction(
           mesh, elems, Eigen::Vector3d::UnitZ(), [&](const Eigen::Vector2d&) { return p; },
           load.pattern);
@@ -563,23 +618,17 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
         load.pattern[3 * node + c] += m * gv[c];
     model.loads.push_back(std::move(load));
   }
+}
 
-  // Drag on surface regions (issue 5).
+/// [[drag]] (issue 5): on surface regions.
+void readDrags(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
+  const int n = mesh.numNodes();
   for (const auto& r : root.tableArray("drag")) {
     Drag d;
     const Selector sel = r.has("region") ? readSelector(r) : Selector{"all", "", {}, {}, "all"};
     if (sel.kind != "region" && sel.kind != "all")
       r.failHere("drag acts on a surface region: give region = NAME (or nothing for all)");
-    std::vector<double> area(n, 0.0);
-    const auto elems = selectElements(mesh, sel, r);
-    for (int e : elems)
-      for (int node : mesh.triangles[e])
-        area[node] += mesh.area(e) / 3;
-    for (int i = 0; i < n; ++i)
-      if (area[i] > 0) {
-        d.nodes.push_back(i);
-        d.area.push_back(area[i]);
-      }
     d.cd = r.getDouble("cd");
     if (!(d.cd > 0))
       r.fail("cd", "drag coefficient must be > 0");
@@ -590,24 +639,138 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     if (measure != "normal" && measure != "resultant")
       r.fail("velocity", "velocity must be \"normal\" or \"resultant\"");
     d.resultant = measure == "resultant";
+    const auto elems = selectElements(mesh, sel, r);
+    if (model.kind == ModelKind::LargeDeflection) {
+      model.surface_loads.push_back(
+          std::make_shared<FollowerDrag>("drag" + std::to_string(model.surface_loads.size()), elems,
+                                         d.cd, d.fluid_density, d.resultant));
+      continue;
+    }
+    std::vector<double> area(n, 0.0);
+    for (int e : elems)
+      for (int node : mesh.triangles[e])
+        area[node] += mesh.area(e) / 3;
+    for (int i = 0; i < n; ++i)
+      if (area[i] > 0) {
+        d.nodes.push_back(i);
+        d.area.push_back(area[i]);
+      }
     model.drags.push_back(std::move(d));
   }
+}
 
-  if (model.compare_without_drag && model.drags.empty())
-    root.fail("compare_without_drag", "needs at least one [[drag]] table");
-
-  // Initial state: uniform initial velocity (optional).
+/// [initial]: uniform initial velocity (optional).
+void readInitial(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
+  const int n = mesh.numNodes();
+  const int ndof = 3 * n;
   if (auto ini = root.optionalTable("initial")) {
-    const auto v = ini->getDoubleArray("velocity");
-    if (v.size() != 3)
-      ini->fail("velocity", "expected [vx, vy, vz]");
     model.v0 = Eigen::VectorXd::Zero(ndof);
-    for (int i = 0; i < n; ++i)
-      for (int c = 0; c < 3; ++c)
-        model.v0[3 * i + c] = v[c];
+    if (ini->has("velocity") || !ini->has("mode")) {
+      const auto v = ini->getDoubleArray("velocity");
+      if (v.size() != 3)
+        ini->fail("velocity", "expected [vx, vy, vz]");
+      for (int i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c)
+          model.v0[3 * i + c] = v[c];
+    }
+    if (ini->has("mode")) {
+      // v_z += V sin(m pi (x - xmin) / Lx) sin(n pi (y - ymin) / Ly) over the bounding box.
+      const auto mn = ini->getDoubleArray("mode");
+      if (mn.size() != 2 || mn[0] < 1 || mn[1] < 1 || mn[0] != std::floor(mn[0]) ||
+          mn[1] != std::floor(mn[1]))
+        ini->fail("mode", "expected [m, n], integers >= 1");
+      const double V = ini->getDouble("mode_velocity");
+      const auto [xmin, xmax, ymin, ymax] = mesh.bounds();
+      for (int i = 0; i < n; ++i)
+        model.v0[3 * i + 2] += V *
+                               std::sin(mn[0] * kPi * (mesh.nodes[i].x() - xmin) / (xmax - xmin)) *
+                               std::sin(mn[1] * kPi * (mesh.nodes[i].y() - ymin) / (ymax - ymin));
+    } else if (ini->has("mode_velocity")) {
+      ini->fail("mode_velocity", "needs mode = [m, n]");
+    }
   }
+}
 
-  // Probes.
+/// Top-level `model`: "linear" (default) or "large_deflection".
+ModelKind readModelKind(const core::TableReader& root) {
+  const std::string kind = root.getString("model", "linear");
+  if (kind == "linear")
+    return ModelKind::Linear;
+  if (kind == "large_deflection")
+    return ModelKind::LargeDeflection;
+  root.fail("model", "model must be \"linear\" or \"large_deflection\"");
+}
+
+/// Parses `components` (a subset of "xyz") into component indices.
+std::vector<int> readComponents(const core::TableReader& r) {
+  const std::string comps = r.getString("components", "xyz");
+  std::vector<int> out;
+  for (char ch : comps) {
+    const auto k = std::string("xyz").find(ch);
+    if (k == std::string::npos || std::count(comps.begin(), comps.end(), ch) > 1)
+      r.fail("components", "components is a subset of \"xyz\"");
+    out.push_back(static_cast<int>(k));
+  }
+  if (out.empty())
+    r.fail("components", "components is a subset of \"xyz\"");
+  return out;
+}
+
+/// [[spring]]: linear springs from the selected nodes to the ground.
+void readSprings(const core::TableReader& root, Model& model) {
+  for (const auto& r : root.tableArray("spring")) {
+    const double k = r.getDouble("stiffness");
+    if (!(k > 0) || !std::isfinite(k))
+      r.fail("stiffness", "spring stiffness must be > 0 (N/m per node)");
+    const auto comps = readComponents(r);
+    const auto nodes = selectNodes(model.mesh, readSelector(r), r);
+    std::vector<int> dofs;
+    for (int node : nodes)
+      for (int c : comps)
+        dofs.push_back(3 * node + c);
+    model.springs.push_back(std::make_shared<GroundSprings>(
+        r.getString("name", "spring" + std::to_string(model.springs.size())), dofs, k));
+  }
+}
+
+/// [[rigid]]: the selected nodes translate together in each listed component
+/// (a rigid frame); no DOF may also be constrained or in another set.
+void readRigidSets(const core::TableReader& root, Model& model, std::vector<int>& owner) {
+  for (const auto& r : root.tableArray("rigid")) {
+    const std::string name = r.getString("name", "rigid" + std::to_string(model.rigid.size()));
+    const auto comps = readComponents(r);
+    const auto nodes = selectNodes(model.mesh, readSelector(r), r);
+    if (nodes.size() < 2)
+      r.failHere("a rigid set needs at least two nodes");
+    for (int c : comps) {
+      RigidSet set{name + "_" + "xyz" [c], {}};
+      for (int node : nodes) {
+        const int dof = 3 * node + c;
+        if (owner[dof] != -1)
+          r.failHere("node " + std::to_string(node) +
+                     " is already constrained or in another rigid set");
+        owner[dof] = -2;
+        set.dofs.push_back(dof);
+      }
+      model.rigid.push_back(std::move(set));
+    }
+  }
+}
+
+/// Features only the explicit integrator has.
+void checkIntegrator(const core::TableReader& root, const Model& model) {
+  if (model.time.integrator == IntegratorKind::Explicit)
+    return;
+  if (!model.springs.empty())
+    root.fail("spring", "springs need time.integrator = \"explicit\"");
+  if (!model.rigid.empty())
+    root.fail("rigid", "rigid sets need time.integrator = \"explicit\"");
+}
+
+/// [[probe]].
+void readProbes(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
   std::set<std::string> names;
   for (const auto& r : root.tableArray("probe")) {
     Probe p;
@@ -619,7 +782,45 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     p.node = mesh.nearestNode(readPoint(r, "at"));
     model.probes.push_back(p);
   }
+}
 
+} // namespace
+
+toml::table loadCaseDocument(const std::filesystem::path& path,
+                             const std::vector<std::string>& overrides) {
+  if (!std::filesystem::exists(path))
+    throw Error("case file not found", ErrorContext{path.string(), 0, ""});
+  toml::table doc = core::parseTomlFile(path);
+  for (const auto& o : overrides)
+    core::applyOverride(doc, o);
+  return doc;
+}
+
+Model buildModel(const toml::table& doc, const std::filesystem::path& path,
+                 const MaterialSources& sources) {
+  core::TableReader root(doc, path.string());
+  Model model;
+  model.name = root.getString("name", path.stem().string());
+  (void)root.getString("description", "");
+  model.compare_without_drag = root.getBool("compare_without_drag", false);
+  model.kind = readModelKind(root);
+  model.mesh = readMesh(root.table("mesh"), path);
+  if (model.kind == ModelKind::Linear && !model.mesh.flat())
+    root.table("mesh").fail("file", "mesh " + model.mesh.source +
+                                        " is not flat (z != 0): the linear model needs a mesh "
+                                        "in the z = 0 plane; use model = \"large_deflection\"");
+  readSections(root, sources, model);
+  readTimeAndOutput(root, model);
+  std::vector<int> owner = readConstraints(root, model);
+  readLoads(root, model);
+  readDrags(root, model);
+  if (model.compare_without_drag && model.drags.empty() && model.surface_loads.empty())
+    root.fail("compare_without_drag", "needs at least one [[drag]] table");
+  readSprings(root, model);
+  readRigidSets(root, model, owner);
+  readInitial(root, model);
+  readProbes(root, model);
+  checkIntegrator(root, model);
   root.finish();
   return model;
 }

@@ -10,16 +10,17 @@
 namespace lamina::membrane {
 
 FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& stem,
-                         const Mesh& mesh, const std::vector<Section>& sections)
+                         const Mesh& mesh, bool deformed_geometry)
     : h5_path_(dir / (stem + ".h5")), xdmf_path_(dir / (stem + ".xdmf")), mesh_(mesh),
-      sections_(sections) {
+      deformed_(deformed_geometry) {
   file_ = std::make_unique<core::H5File>(h5_path_, core::H5File::Mode::Create);
   const auto n = static_cast<std::uint64_t>(mesh.numNodes());
   const auto ne = static_cast<std::uint64_t>(mesh.numElements());
   std::vector<double> xyz(3 * n, 0.0);
   for (std::uint64_t i = 0; i < n; ++i) {
-    xyz[3 * i] = mesh.nodes[i].x();
-    xyz[3 * i + 1] = mesh.nodes[i].y();
+    const Eigen::Vector3d p = mesh.point(static_cast<int>(i));
+    for (int c = 0; c < 3; ++c)
+      xyz[3 * i + c] = p[c];
   }
   std::vector<std::int32_t> tri(3 * ne), region(ne);
   for (std::uint64_t e = 0; e < ne; ++e) {
@@ -36,7 +37,8 @@ FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& st
   writeIndex();
 }
 
-void FieldWriter::write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+void FieldWriter::write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                        const std::vector<CellField>& cells) {
   const auto n = static_cast<std::uint64_t>(mesh_.numNodes());
   const auto ne = static_cast<std::uint64_t>(mesh_.numElements());
   const std::string g = "/steps/" + std::to_string(times_.size());
@@ -47,21 +49,24 @@ void FieldWriter::write(double t, const Eigen::VectorXd& u, const Eigen::VectorX
   for (std::uint64_t i = 0; i < n; ++i)
     speed[i] = v.segment<3>(3 * i).norm();
   file_->writeDoubles(g + "/speed", speed.data(), {n});
-  std::vector<double> strain(6 * ne), stress(6 * ne);
-  for (std::uint64_t e = 0; e < ne; ++e) {
-    const auto& tri = mesh_.triangles[e];
-    Eigen::Matrix<double, 9, 1> ae;
-    for (int k = 0; k < 3; ++k)
-      ae.segment<3>(3 * k) = u.segment<3>(3 * tri[k]);
-    const Eigen::Matrix<double, 6, 1> eps = strainMatrix(mesh_, static_cast<int>(e)) * ae;
-    const Eigen::Matrix<double, 6, 1> sig = sections_[mesh_.region_of[e]].D * eps; // eq. (15)
-    for (int k = 0; k < 6; ++k) {
-      strain[6 * e + k] = eps[k];
-      stress[6 * e + k] = sig[k];
+  if (deformed_) {
+    std::vector<double> xyz(3 * n);
+    for (std::uint64_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d x = mesh_.point(static_cast<int>(i)) + u.segment<3>(3 * i);
+      for (int c = 0; c < 3; ++c)
+        xyz[3 * i + c] = x[c];
     }
+    file_->writeDoubles(g + "/geometry", xyz.data(), {n, 3});
   }
-  file_->writeDoubles(g + "/strain", strain.data(), {ne, 6});
-  file_->writeDoubles(g + "/stress", stress.data(), {ne, 6});
+  cells_.clear();
+  for (const auto& c : cells) {
+    const auto k = static_cast<std::uint64_t>(c.components);
+    if (k == 1)
+      file_->writeDoubles(g + "/" + c.name, c.values.data(), {ne});
+    else
+      file_->writeDoubles(g + "/" + c.name, c.values.data(), {ne, k});
+    cells_.emplace_back(c.name, c.components);
+  }
   file_->writeAttribute(g, "time", t);
   file_->flush();
   times_.push_back(t);
@@ -93,13 +98,14 @@ void FieldWriter::writeIndex() const {
       << " 3\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5
       << ":/mesh/topology</DataItem>\n    </Topology>\n"
       << "    <Geometry GeometryType=\"XYZ\">\n     <DataItem Dimensions=\"" << n
-      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5
-      << ":/mesh/geometry</DataItem>\n    </Geometry>\n";
+      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << h5 << ":"
+      << (deformed_ ? g + "/geometry" : std::string("/mesh/geometry"))
+      << "</DataItem>\n    </Geometry>\n";
     attr("displacement", "Node", "Vector", n, 3, g + "/displacement");
     attr("velocity", "Node", "Vector", n, 3, g + "/velocity");
     attr("speed", "Node", "Scalar", n, 1, g + "/speed");
-    attr("strain", "Cell", "Matrix", ne, 6, g + "/strain");
-    attr("stress", "Cell", "Matrix", ne, 6, g + "/stress");
+    for (const auto& [name, k] : cells_)
+      attr(name, "Cell", k == 1 ? "Scalar" : "Matrix", ne, k, g + "/" + name);
     x << "   </Grid>\n";
   }
   x << "  </Grid>\n </Domain>\n</Xdmf>\n";

@@ -10,8 +10,8 @@
 /// place by close().
 
 #include "core/hdf5_file.hpp"
-#include "membrane/model/assembly.hpp"
 #include "membrane/model/mesh.hpp"
+#include "membrane/model/structure.hpp"
 
 #include <Eigen/Dense>
 
@@ -24,14 +24,19 @@
 namespace lamina::membrane {
 
 /// XDMF + HDF5 series: mesh once; per step displacement, velocity, |v|
-/// (nodes) and strain, stress (elements, lamina order).
+/// (nodes) and the structure's element fields (the linear model: strain,
+/// stress in lamina order). With a deformed geometry each step also holds
+/// the current positions X + u, which the step's grid uses, so ParaView
+/// draws the deformed surface.
 class FieldWriter {
 public:
   /// Creates DIR/<stem>.h5 and DIR/<stem>.xdmf for @p mesh.
   FieldWriter(const std::filesystem::path& dir, const std::string& stem, const Mesh& mesh,
-              const std::vector<Section>& sections);
-  /// Writes the fields of state @p u, @p v at time @p t, flushes, rewrites the index.
-  void write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v);
+              bool deformed_geometry);
+  /// Writes the fields of state @p u, @p v at time @p t and the element
+  /// fields @p cells, flushes, rewrites the index.
+  void write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+             const std::vector<CellField>& cells);
   /// @return number of steps written
   int count() const { return static_cast<int>(times_.size()); }
 
@@ -39,7 +44,8 @@ private:
   void writeIndex() const;
   std::filesystem::path h5_path_, xdmf_path_;
   const Mesh& mesh_;
-  const std::vector<Section>& sections_;
+  bool deformed_;
+  std::vector<std::pair<std::string, int>> cells_; // names and components of the element fields
   std::unique_ptr<core::H5File> file_;
   std::vector<double> times_;
 };

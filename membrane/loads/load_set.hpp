@@ -1,7 +1,8 @@
 #pragma once
 /// @file load_set.hpp
 /// @brief All forces of a model other than the internal (elastic) force,
-/// evaluated at a state: the external loads F(t) and the drag F_drag(v).
+/// evaluated at a state: the external loads F(t, u) (fixed patterns and
+/// follower pressures), the drag F_drag(u, v) and the springs F_s(u).
 ///
 /// The integrators see the loads only through this class, so a scheme never
 /// knows which load kinds a case has.
@@ -18,16 +19,25 @@ public:
   /// Keeps a reference to @p model (it must outlive the set).
   explicit LoadSet(const Model& model);
   /// @return true when the model has external loads (else F = 0 always)
-  bool hasExternal() const { return !model_.loads.empty(); }
+  bool hasExternal() const { return has_external_; }
   /// @return true when the model has drag
-  bool hasDrag() const { return !model_.drags.empty(); }
+  bool hasDrag() const { return has_drag_; }
+  /// @return true when the model has springs to the ground
+  bool hasSprings() const { return !model_.springs.empty(); }
   /// f = F(t) at displacements @p u (N, length 3 * nodes).
   void external(double t, const Eigen::VectorXd& u, Eigen::VectorXd& f) const;
   /// f = F_drag at displacements @p u and velocities @p v (N).
   void drag(const Eigen::VectorXd& u, const Eigen::VectorXd& v, Eigen::VectorXd& f) const;
+  /// f = F_s, the springs' force at displacements @p u (N).
+  void springs(const Eigen::VectorXd& u, Eigen::VectorXd& f) const;
+  /// @return the springs' force on the structure summed per spring set (N)
+  std::vector<Eigen::Vector3d> springSums(const Eigen::VectorXd& u) const;
 
 private:
+  void addSurface(WorkKind kind, double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                  Eigen::VectorXd& f) const;
   const Model& model_;
+  bool has_external_ = false, has_drag_ = false;
 };
 
 } // namespace lamina::membrane

@@ -1,12 +1,14 @@
 #include "membrane/model/linear_membrane.hpp"
 
 #include "membrane/integrators/step_solver.hpp"
+#include "membrane/model/stable_step.hpp"
 
 #include <chrono>
+#include <cmath>
 
 namespace lamina::membrane {
 
-LinearMembrane::LinearMembrane(const Model& model) {
+LinearMembrane::LinearMembrane(const Model& model) : model_(model) {
   const auto t0 = std::chrono::steady_clock::now();
   GlobalMatrices g = assemble(model.mesh, model.sections, model.time.lumped);
   K_ = std::move(g.K);
@@ -25,6 +27,33 @@ double LinearMembrane::strainEnergy(const Eigen::VectorXd& u) const {
   Eigen::VectorXd y;
   multiply(K_, u, y);
   return 0.5 * u.dot(y);
+}
+
+double LinearMembrane::stableStep() const {
+  std::vector<double> speed;
+  for (const auto& s : model_.sections)
+    speed.push_back(std::sqrt(maxWaveModulus(s.D, StrainKind::Lamina6) / s.density));
+  return criticalStep(model_.mesh, speed);
+}
+
+std::vector<CellField> LinearMembrane::cellFields(const Eigen::VectorXd& u) const {
+  const Mesh& mesh = model_.mesh;
+  const int ne = mesh.numElements();
+  CellField strain{"strain", 6, std::vector<double>(6 * static_cast<size_t>(ne))};
+  CellField stress{"stress", 6, std::vector<double>(6 * static_cast<size_t>(ne))};
+  for (int e = 0; e < ne; ++e) {
+    const auto& tri = mesh.triangles[e];
+    Eigen::Matrix<double, 9, 1> ae;
+    for (int k = 0; k < 3; ++k)
+      ae.segment<3>(3 * k) = u.segment<3>(3 * tri[k]);
+    const Eigen::Matrix<double, 6, 1> eps = strainMatrix(mesh, e) * ae;
+    const Eigen::Matrix<double, 6, 1> sig = model_.sections[mesh.region_of[e]].D * eps; // eq. (15)
+    for (int k = 0; k < 6; ++k) {
+      strain.values[6 * static_cast<size_t>(e) + k] = eps[k];
+      stress.values[6 * static_cast<size_t>(e) + k] = sig[k];
+    }
+  }
+  return {strain, stress};
 }
 
 } // namespace lamina::membrane

@@ -20,9 +20,14 @@ public:
   /// @return u.Ku / 2
   double strainEnergy(const Eigen::VectorXd& u) const override;
   const SparseMatrix* stiffness() const override { return &K_; }
+  /// L_e over the fastest wave of the section's D (acoustic tensor of the 6 strains)
+  double stableStep() const override;
+  /// "strain" and "stress" (6 per element, lamina order; sigma = D eps, eq. 15)
+  std::vector<CellField> cellFields(const Eigen::VectorXd& u) const override;
   double setupSeconds() const override { return assembly_s_; }
 
 private:
+  const Model& model_;
   SparseMatrix K_, M_;
   double assembly_s_ = 0;
 };

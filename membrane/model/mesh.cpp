@@ -18,6 +18,11 @@ double Mesh::area(int e) const {
   return 0.5 * (a.x() * b.y() - a.y() * b.x());
 }
 
+double Mesh::area3(int e) const {
+  const auto& t = triangles[e];
+  return 0.5 * (point(t[1]) - point(t[0])).cross(point(t[2]) - point(t[0])).norm();
+}
+
 Eigen::Vector2d Mesh::centroid(int e) const {
   const auto& t = triangles[e];
   return (nodes[t[0]] + nodes[t[1]] + nodes[t[2]]) / 3.0;
@@ -62,6 +67,10 @@ void finalizeMesh(Mesh& mesh) {
   LAMINA_CHECK(mesh.region_of.size() == mesh.triangles.size(), mesh.source,
                ": region list does not match the triangles");
   const int n = mesh.numNodes();
+  LAMINA_CHECK(mesh.z.empty() || static_cast<int>(mesh.z.size()) == n, mesh.source,
+               ": z list does not match the nodes");
+  if (std::all_of(mesh.z.begin(), mesh.z.end(), [](double v) { return v == 0.0; }))
+    mesh.z.clear();
   for (int e = 0; e < mesh.numElements(); ++e) {
     auto& t = mesh.triangles[e];
     for (int k = 0; k < 3; ++k)
@@ -69,14 +78,14 @@ void finalizeMesh(Mesh& mesh) {
                    " refers to a missing node");
     LAMINA_CHECK(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], mesh.source, ": triangle ", e,
                  " repeats a node");
-    if (mesh.area(e) < 0)
+    if (mesh.flat() && mesh.area(e) < 0)
       std::swap(t[1], t[2]);
     // Degenerate: area tiny compared with the square of its longest edge.
     double l2 = 0;
     for (int k = 0; k < 3; ++k)
-      l2 = std::max(l2, (mesh.nodes[t[k]] - mesh.nodes[t[(k + 1) % 3]]).squaredNorm());
-    LAMINA_CHECK(mesh.area(e) > 1e-12 * l2, mesh.source, ": triangle ", e,
-                 " is degenerate (zero area)");
+      l2 = std::max(l2, (mesh.point(t[k]) - mesh.point(t[(k + 1) % 3])).squaredNorm());
+    LAMINA_CHECK((mesh.flat() ? mesh.area(e) : mesh.area3(e)) > 1e-12 * l2, mesh.source,
+                 ": triangle ", e, " is degenerate (zero area)");
   }
   for (auto& [name, set] : mesh.node_sets) {
     std::sort(set.begin(), set.end());
@@ -164,9 +173,9 @@ Mesh readGmsh(const std::filesystem::path& path) {
         continue;
       index[tags[k]] = static_cast<int>(m.nodes.size());
       m.nodes.emplace_back(coord[3 * k], coord[3 * k + 1]);
-      if (std::abs(coord[3 * k + 2]) > 1e-12 * (1 + std::abs(coord[3 * k])))
-        throw Error("node " + std::to_string(tags[k]) + " is not in the z = 0 plane",
-                    ErrorContext{file, 0, ""});
+      // z below round-off of the plan size counts as 0 (flat meshes stay flat).
+      const double z = coord[3 * k + 2];
+      m.z.push_back(std::abs(z) > 1e-12 * (1 + std::abs(coord[3 * k])) ? z : 0.0);
     }
 
     // Regions: physical surfaces; a surface entity without one falls in "all".
@@ -245,15 +254,18 @@ Mesh readGmsh(const std::filesystem::path& path) {
   // Keep only nodes used by triangles (gmsh also returns e.g. circle centres).
   std::vector<int> renum(m.nodes.size(), -1);
   std::vector<Eigen::Vector2d> used;
+  std::vector<double> used_z;
   for (auto& t : m.triangles)
     for (int& i : t) {
       if (renum[i] < 0) {
         renum[i] = static_cast<int>(used.size());
         used.push_back(m.nodes[i]);
+        used_z.push_back(m.z[i]);
       }
       i = renum[i];
     }
   m.nodes = std::move(used);
+  m.z = std::move(used_z);
   for (auto& [name, set] : m.node_sets) {
     std::vector<int> kept;
     for (int i : set)

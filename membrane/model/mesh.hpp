@@ -1,12 +1,15 @@
 #pragma once
 /// @file mesh.hpp
-/// @brief Triangle meshes of the membrane in the x-y plane: the built-in
-/// structured rectangle and gmsh files (.msh, .geo) read via the gmsh C++ API.
+/// @brief Triangle meshes of the membrane: the built-in structured rectangle
+/// (x-y plane) and gmsh files (.msh, .geo) read via the gmsh C++ API, flat
+/// or curved surfaces in 3D.
 ///
 /// Contract: on exit every triangle has three distinct node indices, a
-/// positive area (nodes reordered counter-clockwise) and a region index into
-/// `regions`. Boundary node sets are named: physical curves of a gmsh file,
-/// or "left", "right", "bottom", "top", "edges" for the structured rectangle.
+/// positive area and a region index into `regions`. A flat mesh (all z = 0,
+/// `z` empty) has its triangles counter-clockwise seen from +z; a curved one
+/// keeps gmsh's orientation. Plan quantities (area(), centroid(), selectors)
+/// use (x, y); point() and area3() the 3D position. Boundary node sets are named: physical curves
+/// of a gmsh file, or "left", "right", "bottom", "top", "edges" for the structured rectangle.
 
 #include <Eigen/Dense>
 
@@ -18,9 +21,10 @@
 
 namespace lamina::membrane {
 
-/// A linear-triangle mesh of the undeformed membrane (z = 0).
+/// A linear-triangle mesh of the undeformed membrane.
 struct Mesh {
   std::vector<Eigen::Vector2d> nodes;                ///< initial coordinates (x0, y0), m
+  std::vector<double> z;                             ///< initial z0 per node (empty: all 0)
   std::vector<std::array<int, 3>> triangles;         ///< node indices, counter-clockwise
   std::vector<int> region_of;                        ///< region index of each triangle
   std::vector<std::string> regions;                  ///< region names ("all" for the rectangle)
@@ -31,8 +35,16 @@ struct Mesh {
   int numNodes() const { return static_cast<int>(nodes.size()); }
   /// @return the number of triangles
   int numElements() const { return static_cast<int>(triangles.size()); }
-  /// @return the area of triangle @p e (m^2, > 0)
+  /// @return the plan area of triangle @p e (m^2, > 0 on a flat mesh)
   double area(int e) const;
+  /// @return the initial 3D position of node @p i
+  Eigen::Vector3d point(int i) const {
+    return {nodes[i].x(), nodes[i].y(), z.empty() ? 0.0 : z[i]};
+  }
+  /// @return the true (3D) area of triangle @p e (m^2)
+  double area3(int e) const;
+  /// @return true when every node lies in the plane z = 0
+  bool flat() const { return z.empty(); }
   /// @return the centroid of triangle @p e
   Eigen::Vector2d centroid(int e) const;
   /// @return the index of the node nearest to @p p (lowest index on ties)

@@ -10,13 +10,16 @@
 /// and constraints in model/, the loads in loads/.
 
 #include "membrane/loads/drag.hpp"
+#include "membrane/loads/ground_springs.hpp"
 #include "membrane/loads/load.hpp"
+#include "membrane/loads/surface_load.hpp"
 #include "membrane/model/constraint.hpp"
 #include "membrane/model/mesh.hpp"
 #include "membrane/model/section.hpp"
 
 #include <Eigen/Dense>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,9 +31,31 @@ struct Probe {
   int node = -1;    ///< node index
 };
 
+/// The membrane model of a case (key `model`).
+enum class ModelKind {
+  Linear,         ///< the membrane paper's small-displacement model (default)
+  LargeDeflection ///< total-Lagrangian fabric membrane in 3D
+};
+
+/// The time integrator of a case (key `time.integrator`).
+enum class IntegratorKind {
+  Newmark, ///< the paper's Newmark / HHT-alpha (linear model only; its default)
+  Explicit ///< central differences, lumped mass (the large-deflection model's default)
+};
+
+/// DOFs that move together (a rigid translating frame): one acceleration,
+/// total force over total mass. Explicit integrator only.
+struct RigidSet {
+  std::string name;      ///< for messages
+  std::vector<int> dofs; ///< the DOFs tied together (one component each set)
+};
+
 /// Time integration and solver settings.
 struct TimeSettings {
-  double dt = 0;             ///< tau, s
+  IntegratorKind integrator = IntegratorKind::Newmark; ///< the scheme
+  double safety = 0.9;       ///< explicit: dt = safety * stable step (when dt = 0)
+  double damping = 0;        ///< explicit: mass-proportional damping c (1/s), F = -c M v
+  double dt = 0;             ///< tau, s (explicit: 0 = safety * stable step)
   double t_end = 0;          ///< s
   double beta1 = 0.5;        ///< Newmark beta1 (eq. 30; gamma in other texts)
   double beta2 = 0.5;        ///< Newmark beta2 (eq. 30; 2 beta in other texts)
@@ -55,16 +80,20 @@ struct OutputSettings {
 
 /// Everything a run needs.
 struct Model {
-  std::string name;                                 ///< case name (file stem)
-  Mesh mesh;                                        ///< the mesh
-  std::vector<Section> sections;                    ///< one per mesh region
-  std::vector<Constraint> constraints;              ///< fixed and moving DOF sets
-  std::vector<Load> loads;                          ///< external loads (incl. gravity)
-  std::vector<Drag> drags;                          ///< drag regions
-  std::vector<std::pair<int, double>> point_masses; ///< (node, kg)
-  std::vector<Probe> probes;                        ///< probes
-  TimeSettings time;                                ///< time stepping
-  OutputSettings output;                            ///< outputs
+  std::string name;                                              ///< case name (file stem)
+  Mesh mesh;                                                     ///< the mesh
+  std::vector<Section> sections;                                 ///< one per mesh region
+  std::vector<Constraint> constraints;                           ///< fixed and moving DOF sets
+  std::vector<Load> loads;                                       ///< external loads (incl. gravity)
+  std::vector<Drag> drags;                                       ///< drag regions (linear model)
+  ModelKind kind = ModelKind::Linear;                            ///< which membrane model
+  std::vector<std::shared_ptr<const SurfaceLoad>> surface_loads; ///< follower loads
+  std::vector<std::shared_ptr<const GroundSprings>> springs;     ///< springs to the ground
+  std::vector<RigidSet> rigid;                                   ///< rigid translating sets
+  std::vector<std::pair<int, double>> point_masses;              ///< (node, kg)
+  std::vector<Probe> probes;                                     ///< probes
+  TimeSettings time;                                             ///< time stepping
+  OutputSettings output;                                         ///< outputs
   Eigen::VectorXd u0, v0;            ///< initial displacement and velocity (empty = zero)
   bool compare_without_drag = false; ///< run also without the drag and compare peaks
   /// @return the number of degrees of freedom, 3 per node

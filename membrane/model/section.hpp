@@ -4,6 +4,9 @@
 
 #include "materials/stiffness.hpp"
 
+#include <Eigen/Dense>
+
+#include <limits>
 #include <string>
 
 namespace lamina::membrane {
@@ -15,6 +18,16 @@ struct Section {
   materials::Matrix6 D; ///< 6x6 stiffness, lamina order, Pa
   double density = 0;   ///< kg/m^3
   double thickness = 0; ///< m
+  // Large-deflection model only (model = "large_deflection"):
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();     ///< reference direction of the material x
+                                                       ///< axis, projected onto each element
+  Eigen::Vector3d prestress = Eigen::Vector3d::Zero(); ///< in-plane tension [T11, T22, T12]
+                                                       ///< in material axes (N/m)
+  bool tension_only = false; ///< no compressive principal stress (wrinkling)
+  double failure_strain = std::numeric_limits<double>::infinity(); ///< max principal
+                                                                   ///< Green-Lagrange strain
+  double failure_stress = std::numeric_limits<double>::infinity(); ///< max principal Cauchy
+                                                                   ///< stress (Pa)
 };
 
 } // namespace lamina::membrane

@@ -1,0 +1,58 @@
+#pragma once
+/// @file central_difference.hpp
+/// @brief Explicit central differences with a lumped mass, for any Structure
+/// (the large-deflection fabric, or the linear model).
+///
+/// One step (dt fixed, t_n = n dt), with m the lumped (row-sum) mass:
+///   v_{n+1/2} = v_n + dt/2 a_n      (prescribed velocity at t_n + dt/2 on constrained DOFs)
+///   u_{n+1}   = u_n + dt v_{n+1/2}
+///   m a_{n+1} = F_ext(t_{n+1}, u_{n+1}) + F_drag(u_{n+1}, v_{n+1/2}) + F_s(u_{n+1})
+///               - c m v_{n+1/2} - f_int(u_{n+1})
+///   v_{n+1}   = v_{n+1/2} + dt/2 a_{n+1}   (prescribed velocity at t_{n+1} on constrained DOFs)
+/// Velocity-dependent forces (drag, damping c) use the mid-step velocity
+/// (explicit; first order in them, exact at a steady state). A rigid set
+/// takes one acceleration: its total force over its total mass. Reactions
+/// R = m a + f_int - F at the constrained DOFs, a = (v_{n+1} - v_n) / dt
+/// there. Stable for dt <= the structure's stableStep() (Courant); the
+/// default step is safety x that.
+
+#include "core/error.hpp"
+#include "membrane/integrators/time_integrator.hpp"
+#include "membrane/loads/load_set.hpp"
+#include "membrane/model/structure.hpp"
+
+#include <vector>
+
+namespace lamina::membrane {
+
+/// Central differences on a lumped mass.
+class CentralDifference final : public TimeIntegrator {
+public:
+  /// Uses step @p dt (s) and damping @p damping (1/s). All references must outlive the scheme.
+  CentralDifference(const Model& model, const Structure& structure, const LoadSet& loads,
+                    const ConstrainedDofs& cons, double dt, double damping);
+  void init(State& s) override;
+  void step(State& s) override;
+  double timeStep() const override { return dt_; }
+  const StateForces& forces() const override { return cur_; }
+  const StateForces& previousForces() const override { return prev_; }
+  const Eigen::VectorXd& increment() const override { return du_; }
+  std::string name() const override { return "explicit"; }
+
+private:
+  void evaluate(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v, StateForces& f);
+  void accelerate(const StateForces& f, Eigen::VectorXd& a) const;
+  void reactions(const Eigen::VectorXd& a, StateForces& f) const;
+
+  const Model& model_;
+  const Structure& structure_;
+  const LoadSet& loads_;
+  const ConstrainedDofs& cons_;
+  double dt_, damping_;
+  Eigen::VectorXd m_, minv_; // lumped mass and its inverse (0 on constrained DOFs)
+  std::vector<double> rigid_mass_;
+  StateForces cur_, prev_;
+  Eigen::VectorXd vh_, u1_, v1_, a1_, du_;
+};
+
+} // namespace lamina::membrane

@@ -1,0 +1,175 @@
+#include "membrane/model/large_deflection.hpp"
+
+#include "core/error.hpp"
+#include "membrane/model/stable_step.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace lamina::membrane {
+
+namespace {
+/// Below this many elements the loops run on one thread.
+constexpr int kParallelElements = 4000;
+} // namespace
+
+LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const Mesh& mesh = model.mesh;
+  const int ne = mesh.numElements(), n = mesh.numNodes();
+  for (const auto& s : model.sections) {
+    cps_.push_back(planeStressStiffness(s.D));
+    s0_.push_back(s.prestress / s.thickness);
+    any_tension_only_ = any_tension_only_ || s.tension_only;
+    any_threshold_ =
+        any_threshold_ || std::isfinite(s.failure_strain) || std::isfinite(s.failure_stress);
+  }
+  elements_.reserve(ne);
+  for (int e = 0; e < ne; ++e)
+    elements_.push_back(makeFabricElement(mesh, e, model.sections[mesh.region_of[e]].axis));
+  // Node -> element corners, so the gather of element forces needs no atomics.
+  node_start_.assign(n + 1, 0);
+  for (const auto& t : mesh.triangles)
+    for (int i : t)
+      ++node_start_[i + 1];
+  for (int i = 0; i < n; ++i)
+    node_start_[i + 1] += node_start_[i];
+  node_entry_.resize(node_start_[n]);
+  std::vector<int> fill(node_start_.begin(), node_start_.end() - 1);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < 3; ++a)
+      node_entry_[fill[mesh.triangles[e][a]]++] = 3 * e + a;
+  fe_.assign(9 * static_cast<size_t>(ne), 0.0);
+  // Lumped mass: rho h A0 / 3 per node, plus the point masses.
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(n);
+  for (int e = 0; e < ne; ++e) {
+    const auto& s = model.sections[mesh.region_of[e]];
+    for (int i : mesh.triangles[e])
+      m[i] += s.density * s.thickness * elements_[e].area0 / 3;
+  }
+  for (const auto& [node, pm] : model.point_masses)
+    m[node] += pm;
+  M_.resize(3 * n, 3 * n);
+  M_.reserve(Eigen::VectorXi::Constant(3 * n, 1));
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      M_.insert(3 * i + c, 3 * i + c) = m[i];
+  M_.makeCompressed();
+  setup_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+FabricStress LargeDeflection::stress(int e, const Eigen::VectorXd& u) const {
+  const FabricElement& el = elements_[e];
+  const int r = model_.mesh.region_of[e];
+  std::array<Eigen::Vector3d, 3> x;
+  for (int a = 0; a < 3; ++a)
+    x[a] = model_.mesh.point(el.nodes[a]) + u.segment<3>(3 * el.nodes[a]);
+  return fabricStress(el, x, cps_[r], s0_[r], model_.sections[r].tension_only);
+}
+
+void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
+  const int ne = model_.mesh.numElements(), n = model_.mesh.numNodes();
+  double* fe = fe_.data();
+  // Threads only pay off on large meshes (on small ones their start-up dominates).
+#pragma omp parallel if (ne > kParallelElements)
+  {
+#pragma omp for schedule(static)
+    for (int e = 0; e < ne; ++e) {
+      const FabricStress st = stress(e, u);
+      const Eigen::Matrix3d fa =
+          fabricForces(elements_[e], st, model_.sections[model_.mesh.region_of[e]].thickness);
+      Eigen::Map<Eigen::Matrix3d>(fe + 9 * static_cast<size_t>(e)) = fa;
+    }
+#pragma omp single
+    f.resize(3 * n);
+#pragma omp for schedule(static)
+    for (int i = 0; i < n; ++i) {
+      Eigen::Vector3d s = Eigen::Vector3d::Zero();
+      for (int k = node_start_[i]; k < node_start_[i + 1]; ++k)
+        s += Eigen::Map<const Eigen::Vector3d>(fe + 3 * static_cast<size_t>(node_entry_[k]));
+      f.segment<3>(3 * i) = s;
+    }
+  }
+}
+
+double LargeDeflection::strainEnergy(const Eigen::VectorXd& u) const {
+  const int ne = model_.mesh.numElements();
+  double U = 0;
+#pragma omp parallel for reduction(+ : U) schedule(static) if (ne > kParallelElements)
+  for (int e = 0; e < ne; ++e) {
+    const int r = model_.mesh.region_of[e];
+    const FabricStress st = stress(e, u);
+    U += model_.sections[r].thickness * elements_[e].area0 *
+         (0.5 * st.E.dot(cps_[r] * st.E) + s0_[r].dot(st.E));
+  }
+  return U;
+}
+
+double LargeDeflection::stableStep() const {
+  std::vector<double> speed;
+  for (size_t r = 0; r < model_.sections.size(); ++r) {
+    const auto& s = model_.sections[r];
+    // A tension T adds T / (rho h) to c^2 (the string's wave); take its largest principal value.
+    const Eigen::Vector2d t = principal2(s0_[r][0], s0_[r][1], s0_[r][2]);
+    const double modulus = maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(t[0], 0.0);
+    speed.push_back(std::sqrt(modulus / s.density));
+  }
+  return criticalStep(model_.mesh, speed);
+}
+
+std::vector<CellField> LargeDeflection::cellFields(const Eigen::VectorXd& u) const {
+  const int ne = model_.mesh.numElements();
+  const auto sz = static_cast<size_t>(ne);
+  CellField strain{"strain", 3, std::vector<double>(3 * sz)};
+  CellField stress_f{"stress", 3, std::vector<double>(3 * sz)};
+  CellField pstrain{"principal_strain", 2, std::vector<double>(2 * sz)};
+  CellField pstress{"principal_stress", 2, std::vector<double>(2 * sz)};
+  CellField wrinkled{"wrinkled", 1, std::vector<double>(sz)};
+#pragma omp parallel for schedule(static) if (ne > kParallelElements)
+  for (int e = 0; e < ne; ++e) {
+    const FabricStress st = stress(e, u);
+    const auto k = static_cast<size_t>(e);
+    const Eigen::Vector2d pe = principal2(st.E[0], st.E[1], 0.5 * st.E[2]);
+    const Eigen::Vector2d ps = principalCauchy(st);
+    for (int c = 0; c < 3; ++c) {
+      strain.values[3 * k + c] = st.E[c];
+      stress_f.values[3 * k + c] = st.S[c];
+    }
+    for (int c = 0; c < 2; ++c) {
+      pstrain.values[2 * k + c] = pe[c];
+      pstress.values[2 * k + c] = ps[c];
+    }
+    wrinkled.values[k] = static_cast<double>(static_cast<int>(st.state));
+  }
+  return {strain, stress_f, pstrain, pstress, wrinkled};
+}
+
+void LargeDeflection::checkFailure(double t, const Eigen::VectorXd& u,
+                                   FailureRecord& record) const {
+  if (!any_threshold_)
+    return;
+  const int ne = model_.mesh.numElements();
+  if (record.time.empty()) {
+    record.time.assign(ne, -1.0);
+    record.criterion.assign(ne, FailureCriterion::None);
+  }
+  std::vector<FailureCriterion> hit(ne, FailureCriterion::None);
+#pragma omp parallel for schedule(static) if (ne > kParallelElements)
+  for (int e = 0; e < ne; ++e) {
+    if (record.time[e] >= 0)
+      continue;
+    const Section& s = model_.sections[model_.mesh.region_of[e]];
+    if (!std::isfinite(s.failure_strain) && !std::isfinite(s.failure_stress))
+      continue;
+    const FabricStress st = stress(e, u);
+    if (principal2(st.E[0], st.E[1], 0.5 * st.E[2])[0] >= s.failure_strain)
+      hit[e] = FailureCriterion::Strain;
+    else if (principalCauchy(st)[0] >= s.failure_stress)
+      hit[e] = FailureCriterion::Stress;
+  }
+  for (int e = 0; e < ne; ++e)
+    if (hit[e] != FailureCriterion::None)
+      record.mark(e, t, hit[e]);
+}
+
+} // namespace lamina::membrane

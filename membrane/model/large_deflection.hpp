@@ -1,0 +1,59 @@
+#pragma once
+/// @file large_deflection.hpp
+/// @brief The geometrically exact fabric membrane: total-Lagrangian CST
+/// triangles anywhere in 3D (fabric_element.hpp), plane-stress stiffness per
+/// region, pre-stress, tension-only wrinkling, failure thresholds, lumped
+/// mass (rho h A / 3 per node plus point masses). The internal force is
+/// computed element by element (no global stiffness), in parallel.
+
+#include "membrane/model/fabric_element.hpp"
+#include "membrane/model/model.hpp"
+#include "membrane/model/structure.hpp"
+
+#include <vector>
+
+namespace lamina::membrane {
+
+/// Large-deflection membrane of one Model.
+class LargeDeflection final : public Structure {
+public:
+  /// Builds the element frames (material axis per region), C_ps per region
+  /// and the lumped mass. Keeps a reference to @p model.
+  explicit LargeDeflection(const Model& model);
+  int numDofs() const override { return 3 * model_.mesh.numNodes(); }
+  const SparseMatrix& mass() const override { return M_; }
+  void internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
+  /// @return sum of h A0 (E.C_ps E / 2 + S0.E) (a potential unless a region is tension-only)
+  double strainEnergy(const Eigen::VectorXd& u) const override;
+  bool hasPotential() const override { return !any_tension_only_; }
+  double stableStep() const override;
+  /// "strain" and "stress" ([E11, E22, 2E12], [S11, S22, S12] in the element's
+  /// material frame), "principal_strain", "principal_stress" (Cauchy, Pa; major
+  /// first), "wrinkled" (0 taut, 1 wrinkled, 2 slack)
+  std::vector<CellField> cellFields(const Eigen::VectorXd& u) const override;
+  bool deformedGeometry() const override { return true; }
+  bool hasFailureThresholds() const override { return any_threshold_; }
+  void checkFailure(double t, const Eigen::VectorXd& u, FailureRecord& record) const override;
+  double setupSeconds() const override { return setup_s_; }
+
+  /// @return the stress state of element @p e at displacements @p u
+  FabricStress stress(int e, const Eigen::VectorXd& u) const;
+  /// @return the reference data of element @p e
+  const FabricElement& element(int e) const { return elements_[e]; }
+  /// @return C_ps of region @p r (Pa)
+  const Eigen::Matrix3d& planeStress(int r) const { return cps_[r]; }
+
+private:
+  const Model& model_;
+  std::vector<FabricElement> elements_;
+  std::vector<Eigen::Matrix3d> cps_; // per region
+  std::vector<Eigen::Vector3d> s0_;  // pre-stress per region (Pa)
+  std::vector<int> node_start_;      // node -> (element, corner) list, CSR
+  std::vector<int> node_entry_;      // 3 * element + corner
+  mutable std::vector<double> fe_;   // element forces, 9 per element (scratch)
+  SparseMatrix M_;
+  bool any_tension_only_ = false, any_threshold_ = false;
+  double setup_s_ = 0;
+};
+
+} // namespace lamina::membrane
