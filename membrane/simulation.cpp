@@ -8,6 +8,9 @@
 #include "membrane/model/large_deflection.hpp"
 #include "membrane/model/linear_membrane.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace lamina::membrane {
 
 namespace {
@@ -15,6 +18,25 @@ std::unique_ptr<Structure> makeStructure(const Model& model) {
   if (model.kind == ModelKind::LargeDeflection)
     return std::make_unique<LargeDeflection>(model);
   return std::make_unique<LinearMembrane>(model);
+}
+
+/// The stable step of @p structure with the model's springs: a spring k on a
+/// node of lumped mass m adds k / m to omega^2 there, so the bound
+/// omega_max = 2 / dt_s of the structure becomes sqrt((2 / dt_s)^2 + k / m).
+double stableWithSprings(const Model& model, const Structure& structure) {
+  const double dt = structure.stableStep();
+  if (model.springs.empty())
+    return dt;
+  const SparseMatrix& M = structure.mass();
+  double w2 = 0;
+  for (const auto& s : model.springs)
+    for (int d : s->dofs()) {
+      double m = 0;
+      for (SparseMatrix::InnerIterator it(M, d); it; ++it)
+        m += it.value();
+      w2 = std::max(w2, s->stiffness() / m);
+    }
+  return 2 / std::sqrt(4 / (dt * dt) + w2);
 }
 
 /// The explicit step: time.dt when given (at most the stable step), else safety x stable.
@@ -33,7 +55,7 @@ double explicitStep(const TimeSettings& ts, double stable) {
 Simulation::Simulation(const Model& model)
     : model_(model), structure_(makeStructure(model)), loads_(model),
       cons_(model.constraints, model.numDofs()) {
-  stable_dt_ = structure_->stableStep();
+  stable_dt_ = stableWithSprings(model, *structure_);
   if (model.time.integrator == IntegratorKind::Explicit)
     integrator_ = std::make_unique<CentralDifference>(model, *structure_, loads_, cons_,
                                                       explicitStep(model.time, stable_dt_),

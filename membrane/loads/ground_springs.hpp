@@ -19,6 +19,10 @@ public:
   const std::string& name() const override { return name_; }
   void add(double t, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
            Eigen::VectorXd& f) const override;
+  /// @return the DOFs with a spring
+  const std::vector<int>& dofs() const { return dofs_; }
+  /// @return the stiffness of each spring (N/m)
+  double stiffness() const { return k_; }
   /// @return the force of the springs on the structure, summed (N)
   Eigen::Vector3d sum(const Eigen::VectorXd& u) const;
 

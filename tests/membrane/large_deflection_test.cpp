@@ -170,6 +170,38 @@ TEST(LargeDeflection, RunAtTheStableStepStaysBoundedFor10000Steps) {
   }
 }
 
+// A stiff spring on every node (k / m = 1e8 1/s^2, above the fabric's
+// (2 / dt_crit)^2) bounds the stable step by 2 sqrt(m / k); at that step
+// (safety 1) 10^4 steps stay bounded (the same 3 E0 bound as above).
+TEST(LargeDeflection, SpringsShortenTheStableStep) {
+  Model m = test::modelFromText(fabricSquare(8, R"([time]
+safety = 1.0
+t_end = 1.0
+[[fixed]]
+nodes = "edges"
+[[spring]]
+all = true
+stiffness = 1.5625e6
+)"));
+  // rho h A / 3 per node: interior nodes carry 6 triangles of 1/128 m^2: m = 1/64 kg.
+  const double mass = 1.0 / 64, k = 1.5625e6;
+  m.v0 = Eigen::VectorXd::Zero(m.numDofs());
+  for (int i = 0; i < m.numDofs(); ++i)
+    m.v0[i] = 1e-3 * std::sin(1.7 * i);
+  Simulation sim(m);
+  EXPECT_LT(sim.stableStep(), 2 * std::sqrt(mass / k));
+  const double e0 = sim.initialEnergy();
+  double worst = 0;
+  for (int s = 0; s < 10000; ++s) {
+    sim.step();
+    if (s % 10 == 0) {
+      const Energy e = sim.energy();
+      worst = std::max(worst, e.kinetic + e.strain - e.spring_work);
+    }
+  }
+  EXPECT_LT(worst, 3 * e0);
+}
+
 // Energy balance of the explicit fabric run under a follower pressure (work
 // of the pressure = kinetic + strain energy): the trapezoidal works make the
 // balance an O(dt^2) error, so halving dt divides it by ~4 (accepted 3 to
