@@ -10,6 +10,7 @@
 /// parameters in SI units. Optional `nominal_thickness` (m).
 
 #include "materials/gvbo.hpp"
+#include "materials/law.hpp"
 #include "materials/material.hpp"
 
 #include <filesystem>
@@ -25,11 +26,13 @@ struct CatalogEntry {
   std::string name;                        ///< key in the catalog
   std::string description;                 ///< one line for humans
   std::string source;                      ///< where the numbers come from
-  std::string law;                         ///< "isotropic", "anisotropic" or "gvbo"
+  LawKind law = LawKind::Isotropic;        ///< which law (law_spec.hpp)
   double density = 0;                      ///< kg/m^3
   Stiffness C;                             ///< elastic stiffness (for gvbo: at J = 1, i.e. E0, nu0)
   std::optional<GvboParameters> gvbo;      ///< GVBO parameters for law = "gvbo"
   std::optional<double> nominal_thickness; ///< m, where the source gives one
+  /// @return the law object of this entry (LawSpec::make)
+  LawPtr makeLaw() const;
   /// @return this entry as a library Material of kind "catalog"
   Material toMaterial() const;
 };

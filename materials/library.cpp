@@ -111,22 +111,6 @@ std::string value(const toml::node& n) {
   return quoteBasic(os.str());
 }
 
-/// A 6x6 matrix (6 rows of 6 numbers, lamina order) at @p k; @p unit names
-/// it in the error.
-Matrix6 readMatrix6(const core::TableReader& t, const char* k, const std::string& unit) {
-  const auto rows = t.getMatrix(k);
-  bool ok = rows.size() == 6;
-  for (const auto& row : rows)
-    ok = ok && row.size() == 6;
-  if (!ok)
-    t.fail(k, "expected 6 rows of 6 numbers (" + unit + ", lamina order)");
-  Matrix6 c;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      c(i, j) = rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-  return c;
-}
-
 /// Writes a 6x6 matrix as 6 rows with 17 significant digits.
 void writeMatrix6(std::ostream& os, const char* k, const Matrix6& c) {
   os << k << " = [\n";

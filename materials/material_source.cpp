@@ -24,6 +24,15 @@ const Catalog* MaterialSource::catalog() {
   return catalog_.get();
 }
 
+LawPtr MaterialSource::law(const std::string& name) {
+  if (!library().contains(name)) {
+    const Catalog* cat = catalog();
+    if (cat && cat->contains(name))
+      return cat->get(name).makeLaw();
+  }
+  return std::make_shared<LinearElasticLaw>(LawKind::Anisotropic, get(name).C);
+}
+
 Material MaterialSource::get(const std::string& name) {
   const Library& lib = library();
   if (lib.contains(name))

@@ -4,6 +4,7 @@
 /// first, then the catalog of base materials.
 
 #include "materials/catalog.hpp"
+#include "materials/law.hpp"
 #include "materials/library.hpp"
 
 #include <filesystem>
@@ -26,6 +27,10 @@ public:
 
   /// @return the material named @p name (see the class contract)
   Material get(const std::string& name);
+  /// @return the constitutive law of @p name: a library entry is linear
+  /// elastic with its C (LawKind::Anisotropic), a catalog entry has its own
+  /// law (GVBO included); unknown names as get()
+  LawPtr law(const std::string& name);
   /// @return the library (loaded now if not yet)
   const Library& library();
 

@@ -1,5 +1,5 @@
 /// @file materials_main.cpp
-/// @brief The `materials` program: list, show, add, layup, export, remove.
+/// @brief The `materials` program: list, show, add, layup, export, remove, drive.
 
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -8,6 +8,7 @@
 #include "materials/layup.hpp"
 #include "materials/library.hpp"
 #include "materials/material_source.hpp"
+#include "materials/point_driver.hpp"
 #include "materials/symmetry.hpp"
 
 #include <CLI/CLI.hpp>
@@ -160,6 +161,29 @@ int main(int argc, char** argv) {
   auto* remove = app.add_subcommand("remove", "remove an entry");
   remove->add_option("NAME", name, "entry name")->required();
 
+  auto* driveCmd = app.add_subcommand(
+      "drive", "drive one material point along a strain path at a constant rate (CSV)");
+  std::string pathName = "uniaxial-strain", out, kinematics = "finite";
+  mat::DriveOptions drive;
+  driveCmd->add_option("NAME", name, "library entry or catalog material")->required();
+  driveCmd->add_option("--path", pathName, "uniaxial-stress | uniaxial-strain | shear | confined")
+      ->check(CLI::IsMember({"uniaxial-stress", "uniaxial-strain", "shear", "confined"}));
+  driveCmd->add_option("--rate", drive.rate, "driven strain rate (1/s)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  driveCmd->add_option("--to", drive.to, "final driven strain (confined: compression)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  driveCmd->add_flag("--unload", drive.unload, "drive back to zero strain at the same rate");
+  driveCmd->add_option("--steps", drive.steps, "time steps per leg (default 200)")
+      ->check(CLI::Range(1, 100000000));
+  driveCmd
+      ->add_option("--kinematics", kinematics,
+                   "finite (rotation-free frame, J = det F; default) | small")
+      ->check(CLI::IsMember({"finite", "small"}));
+  driveCmd->add_option("--out", out, "CSV file to write")->required();
+  driveCmd->add_option("--library", libraryPath, "library file (as before the subcommand)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -244,6 +268,18 @@ int main(int argc, char** argv) {
     if (exportCmd->parsed()) {
       const mat::Library lib(path);
       std::cout << mat::exportCard(lib.get(name), format);
+      return 0;
+    }
+    if (driveCmd->parsed()) {
+      drive.path = *mat::parseDrivePath(pathName);
+      drive.kinematics = kinematics == "small" ? mat::Kinematics::Small : mat::Kinematics::Finite;
+      mat::MaterialSource source(path.string(), catalogPath);
+      const mat::LawPtr law = source.law(name);
+      const std::vector<mat::DriveRow> rows = mat::drive(*law, drive);
+      mat::writeDriveCsv(out, rows);
+      std::cerr << "drove '" << name << "' (" << mat::toString(law->kind()) << ") along "
+                << pathName << " at " << drive.rate << " /s to " << drive.to << ": " << rows.size()
+                << " rows in " << out << "\n";
       return 0;
     }
     if (remove->parsed()) {

@@ -1,11 +1,28 @@
 #include "materials/stiffness.hpp"
 
 #include "core/error.hpp"
+#include "core/toml_reader.hpp"
 #include "materials/conversions.hpp"
 
 #include <cmath>
 
 namespace lamina::materials {
+
+Matrix6 readMatrix6(const core::TableReader& t, std::string_view key, const std::string& unit) {
+  const auto rows = t.getMatrix(key);
+  const std::string shape = "expected 6 rows of 6 numbers (" + unit + ", lamina order)";
+  if (rows.size() != 6)
+    t.fail(key, shape);
+  Matrix6 c;
+  for (int i = 0; i < 6; ++i) {
+    const auto& row = rows[static_cast<std::size_t>(i)];
+    if (row.size() != 6)
+      t.fail(key, shape);
+    for (int j = 0; j < 6; ++j)
+      c(i, j) = row[static_cast<std::size_t>(j)];
+  }
+  return c;
+}
 
 Stiffness Stiffness::isotropic(double E, double nu) {
   LAMINA_CHECK(E > 0 && std::isfinite(E), "Young's modulus must be positive, got ", E);

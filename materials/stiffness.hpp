@@ -11,6 +11,11 @@
 
 #include <array>
 #include <string>
+#include <string_view>
+
+namespace lamina::core {
+class TableReader;
+}
 
 namespace lamina::materials {
 
@@ -80,6 +85,14 @@ public:
 private:
   Matrix6 c_;
 };
+
+/// Reads key @p key of @p t as 6 rows of 6 numbers (lamina order, unit
+/// @p unit named in the message): the one reader of a 6x6 from TOML
+/// (catalog, library, cells, cases). Throws lamina::Error naming the file
+/// and key unless it has that shape; the caller validates the values
+/// (Stiffness::validate).
+Matrix6 readMatrix6(const core::TableReader& t, std::string_view key,
+                    const std::string& unit = "Pa");
 
 /// Rotation matrix of @p radians about the unit axis (x=0, y=1, z=2).
 Eigen::Matrix3d axisRotation(int axis, double radians);

@@ -3,8 +3,9 @@
 /// @brief One material phase of a unit cell: its law, stiffness and density.
 ///
 /// A phase is read from a `[[phases]]` table of a cell file (see
-/// docs/homogenize.md). Laws: "isotropic" (E, nu), "anisotropic" (C, 6x6,
-/// lamina order, Pa) and "gvbo" (the polyurea chapter's law; for a linear
+/// docs/homogenize.md). Laws (materials::readLawSpec): "isotropic" (E, nu),
+/// "transversely-isotropic", "anisotropic" (C, 6x6, lamina order, Pa) and
+/// "gvbo" (the polyurea chapter's law; for a linear
 /// homogenization it contributes its instantaneous isotropic moduli at a
 /// matrix state J, eqs. 13-16, never below the initial moduli). A phase can
 /// instead name a catalog entry (`catalog = "NAME"`), which supplies law,
@@ -12,6 +13,7 @@
 
 #include "materials/catalog.hpp"
 #include "materials/gvbo.hpp"
+#include "materials/law.hpp"
 #include "materials/stiffness.hpp"
 
 #include <functional>
@@ -27,13 +29,16 @@ namespace lamina::micro {
 
 /// A phase of a unit cell.
 struct Phase {
-  std::string name;       ///< unique name within the cell
-  std::string law;        ///< "isotropic", "anisotropic" or "gvbo"
-  std::string source;     ///< "catalog:NAME" or "inline"
+  std::string name;                                       ///< unique name within the cell
+  materials::LawKind law = materials::LawKind::Isotropic; ///< which law
+  std::string source;                                     ///< "catalog:NAME" or "inline"
   materials::Stiffness C; ///< elastic stiffness (gvbo: at J = 1), lamina order, Pa
   double density = 0;     ///< kg/m^3, > 0
   std::optional<materials::GvboParameters> gvbo; ///< set for law "gvbo"
   std::vector<double> J;                         ///< gvbo states to homogenize at (empty: J = 1)
+  /// The law object of the phase (shared by all its voxels): GvboLaw or
+  /// LinearElasticLaw(C). Linear solvers keep using C (or stiffnessAt).
+  materials::LawPtr model;
 
   /// Stiffness of the phase at matrix state @p J (lamina order, Pa). For a
   /// gvbo phase: isotropic from gvboModuli(J) (eqs. 13-16 of the chapter);

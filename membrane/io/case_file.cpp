@@ -279,15 +279,7 @@ Section readSection(const core::TableReader& r, materials::MaterialSource& res, 
     s.density = r.getDouble("density");
     s.material = "isotropic E=" + std::to_string(E) + " nu=" + std::to_string(nu);
   } else if (aniso) {
-    const auto C = r.getMatrix("C");
-    if (C.size() != 6)
-      r.fail("C", "expected 6 rows of 6 (Pa, lamina order)");
-    for (int i = 0; i < 6; ++i) {
-      if (C[i].size() != 6)
-        r.fail("C", "expected 6 rows of 6 (Pa, lamina order)");
-      for (int j = 0; j < 6; ++j)
-        s.D(i, j) = C[i][j];
-    }
+    s.D = materials::readMatrix6(r, "C");
     s.density = r.getDouble("density");
     s.material = "inline C";
   } else {

@@ -459,3 +459,55 @@ TEST(ConcurrentWriters, KilledWriterLeavesReadableLibrary) {
   mat::Library(path).add(m);
   EXPECT_TRUE(mat::Library(path).contains("after"));
 }
+
+// `materials drive` (issue 11 interface): the exact header, one row per step
+// plus t = 0, time = strain / rate, the driven column as asked; a library
+// entry drives as linear elasticity (sigma_xy = C44 gamma exactly at any
+// rate); --library after the subcommand is accepted.
+TEST_F(MaterialsProgram, DriveWritesTheDocumentedCsv) {
+  const auto csv = dir_ / "drive.csv";
+  auto r = run("drive polyurea-gvbo --path shear --rate 1e3 --to 0.1 --steps 10 --out '" +
+               csv.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream in(lamina::test::readFile(csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t,eps_xx,eps_yy,eps_zz,eps_xy,eps_yz,eps_xz,sig_xx,sig_yy,sig_zz,sig_xy,sig_yz,"
+                  "sig_xz");
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::istringstream items(line);
+    std::string item;
+    while (std::getline(items, item, ','))
+      v.push_back(std::stod(item));
+    ASSERT_EQ(v.size(), 13u) << line;
+    rows.push_back(v);
+  }
+  ASSERT_EQ(rows.size(), 11u);
+  EXPECT_DOUBLE_EQ(rows.back()[0], 0.1 / 1e3);
+  EXPECT_DOUBLE_EQ(rows.back()[4], 0.1);
+  EXPECT_EQ(rows.back()[1], 0.0);
+  EXPECT_GT(rows.back()[10], 0.0);
+  // a library entry: linear elastic, sigma_xy = C44 gamma in small strain
+  ASSERT_EQ(run("add glass --from-catalog e-glass").status, 0);
+  const auto csv2 = dir_ / "glass.csv";
+  r = lamina::test::runMaterials(
+      dir_, dir_ / "other.toml",
+      "drive glass --path shear --rate 1e6 --to 0.001 --steps 4 --kinematics small --library '" +
+          lib_.string() + "' --out '" + csv2.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string text = lamina::test::readFile(csv2);
+  std::istringstream lastLine(text.substr(text.rfind('\n', text.size() - 2) + 1));
+  std::vector<double> last;
+  for (std::string item; std::getline(lastLine, item, ',');)
+    last.push_back(std::stod(item));
+  ASSERT_EQ(last.size(), 13u);
+  const double C44 = 72.4e9 / (2 * 1.22); // E / (2 (1 + nu)) of e-glass
+  EXPECT_NEAR(last[10], C44 * 0.001, 1e-9 * C44 * 0.001);
+  // bad input: unknown path, unknown material
+  EXPECT_EQ(run("drive polyurea-gvbo --path twist --rate 1 --to 0.1 --out x.csv").status, 2);
+  r = run("drive no-such --path shear --rate 1 --to 0.1 --out '" + (dir_ / "x.csv").string() + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.err.find("no-such"), std::string::npos) << r.err;
+}

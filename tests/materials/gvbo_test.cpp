@@ -17,7 +17,7 @@ namespace {
 
 const mat::GvboParameters& polyurea() {
   static const mat::Catalog cat(lamina::test::catalogPath());
-  return *cat.get("polyurea").gvbo;
+  return *cat.get("polyurea-gvbo").gvbo;
 }
 
 } // namespace
@@ -26,7 +26,7 @@ const mat::GvboParameters& polyurea() {
 // k1 = 17, k2 = 0.47, k3 = 1.47, k4 = 4, Em = 13600, A0 = 1; density 1.1 g/cm^3.
 TEST(Gvbo, PolyureaCatalogEntryMatchesTable5) {
   const mat::Catalog cat(lamina::test::catalogPath());
-  const mat::CatalogEntry& e = cat.get("polyurea");
+  const mat::CatalogEntry& e = cat.get("polyurea-gvbo");
   ASSERT_TRUE(e.gvbo.has_value());
   const mat::GvboParameters& g = *e.gvbo;
   EXPECT_EQ(g.E0, 278e6);

@@ -1,0 +1,221 @@
+#include "materials/gvbo_law.hpp"
+
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace lamina::materials {
+
+namespace {
+
+/// a : b for symmetric tensors stored as [xx, yy, zz, xy, yz, xz] (tensor components).
+double contract(const Vector6& a, const Vector6& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
+}
+
+/// Deviator of a tensor stored as above.
+Vector6 deviator(const Vector6& a) {
+  Vector6 d = a;
+  const double m = (a[0] + a[1] + a[2]) / 3;
+  d[0] -= m;
+  d[1] -= m;
+  d[2] -= m;
+  return d;
+}
+
+const double kSqrt23 = std::sqrt(2.0 / 3.0);
+
+/// The scalar problem of one step: every quantity as a function of Gamma,
+/// with its derivative (chain rule written out per line).
+struct Scalars {
+  double c, dc;     // psi / E
+  double phi, dphi; // dt / (E k)
+  double k;         // viscosity
+  double A;         // isotropic stress at t_{n+1}
+  double a, da;     // c beta
+  double D, dD;     // x = W / D
+  Vector6 W, dW;    // W = W0 - c h + a V
+  double normW;     // |W|
+  double r, dr;     // Gamma D - sqrt(2/3) |W|
+};
+
+struct StepConstants {
+  const GvboLaw* law;
+  double E, G, Etb, k2b, dt, A_n;
+  Vector6 W0, h, V;
+};
+
+Scalars evaluate(const StepConstants& sc, double Gamma) {
+  const GvboParameters& p = sc.law->parameters();
+  Scalars s;
+  const double ex = std::exp(-p.a3 * Gamma);
+  const double psi = p.a1 + (p.a2 - p.a1) * ex;
+  s.c = psi / sc.E;
+  s.dc = -p.a3 * (p.a2 - p.a1) * ex / sc.E;
+  s.k = p.k1 * std::pow(1 + Gamma / sc.k2b, -p.k4);
+  s.phi = sc.dt / (sc.E * s.k);
+  s.dphi = s.phi * p.k4 / (sc.k2b + Gamma); // -phi k'/k
+  const double q = Gamma * s.phi, dq = s.phi + Gamma * s.dphi;
+  const double den = 1 + p.Ac * q;
+  s.A = (sc.A_n + p.Ac * p.Af * q) / den;
+  const double dA = p.Ac * (p.Af - sc.A_n) * dq / (den * den);
+  const double beta = q * sc.E / s.A;
+  const double dbeta = sc.E * (dq * s.A - q * dA) / (s.A * s.A);
+  s.a = s.c * beta;
+  s.da = s.dc * beta + s.c * dbeta;
+  const double G3 = 3 * sc.G, EmG = sc.E - G3;
+  s.D = (1 + s.a) * (1 + G3 * s.phi) + s.c * EmG * s.phi + (s.a + 1 - s.c) * sc.Etb * s.phi;
+  s.dD = s.da * (1 + G3 * s.phi) + (1 + s.a) * G3 * s.dphi + s.dc * EmG * s.phi +
+         s.c * EmG * s.dphi + (s.da - s.dc) * sc.Etb * s.phi + (s.a + 1 - s.c) * sc.Etb * s.dphi;
+  s.W = sc.W0 - s.c * sc.h + s.a * sc.V;
+  s.dW = -s.dc * sc.h + s.da * sc.V;
+  s.normW = std::sqrt(std::max(contract(s.W, s.W), 0.0));
+  s.r = Gamma * s.D - kSqrt23 * s.normW;
+  s.dr = s.D + Gamma * s.dD - (s.normW > 0 ? kSqrt23 * contract(s.W, s.dW) / s.normW : 0.0);
+  return s;
+}
+
+/// Root of r(Gamma) = 0 on [0, inf): r(0) <= 0 and r grows without bound.
+/// Safeguarded Newton: a Newton step leaving the bracket is replaced by bisection.
+double solveGamma(const StepConstants& sc, double guess, int& iterations) {
+  double lo = 0, hi = 0;
+  Scalars s0 = evaluate(sc, 0.0);
+  if (s0.normW == 0)
+    return 0;
+  // bracket: grow from the elastic overstress until r > 0
+  hi = std::max(kSqrt23 * s0.normW / s0.D, 1e-300);
+  for (int i = 0; evaluate(sc, hi).r <= 0; ++i) {
+    LAMINA_CHECK(i < 400, "GVBO: cannot bracket the overstress (Gamma)");
+    lo = hi;
+    hi *= 2;
+  }
+  double g = (guess > lo && guess < hi) ? guess : hi;
+  const double scale = sc.k2b + hi;
+  for (iterations = 0; iterations < 200; ++iterations) {
+    const Scalars s = evaluate(sc, g);
+    if (s.r > 0)
+      hi = g;
+    else
+      lo = g;
+    double next = s.dr > 0 ? g - s.r / s.dr : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi))
+      next = 0.5 * (lo + hi);
+    const double step = std::abs(next - g);
+    g = next;
+    // converged to round-off of Gamma on the scale of k2 and the bracket
+    if (step <= 1e-14 * scale || hi - lo <= 1e-14 * scale)
+      return g;
+  }
+  throw Error("GVBO: the overstress iteration did not converge");
+}
+
+} // namespace
+
+GvboLaw::GvboLaw(const GvboParameters& p) : p_(p) {
+  LAMINA_CHECK(p.E0 > 0 && std::isfinite(p.E0), "GVBO: E0 must be positive");
+  LAMINA_CHECK(p.nu0 > -1 && p.nu0 < 0.5, "GVBO: nu0 must lie in (-1, 0.5)");
+  LAMINA_CHECK(p.Et >= 0 && p.Et < p.E0, "GVBO: Et must lie in [0, E0)");
+  LAMINA_CHECK(p.k1 > 0, "GVBO: k1 must be positive (s)");
+  LAMINA_CHECK(p.k2 > 0, "GVBO: k2 must be positive (Pa)");
+  LAMINA_CHECK(p.k3 >= 0, "GVBO: k3 must not be negative (Pa)");
+  LAMINA_CHECK(p.k4 >= 0, "GVBO: k4 must not be negative");
+  LAMINA_CHECK(p.Em > p.E0, "GVBO: Em must exceed E0");
+  LAMINA_CHECK(p.A0 > 0, "GVBO: A0 must be positive (Pa)");
+  LAMINA_CHECK(p.Ac >= 0, "GVBO: Ac must not be negative (1/s)");
+  LAMINA_CHECK(p.Af >= 0, "GVBO: Af must not be negative (Pa)");
+  LAMINA_CHECK(p.a3 >= 0, "GVBO: a3 must not be negative (1/Pa)");
+}
+
+void GvboLaw::initState(double* state) const {
+  std::fill(state, state + GvboState::kSize, 0.0);
+  state[GvboState::kA] = p_.A0;
+}
+
+Stiffness GvboLaw::elasticStiffness(double J) const {
+  const GvboModuli m = gvboModuli(p_, J);
+  return Stiffness::fromLame(m.lambda, m.G);
+}
+
+double GvboLaw::viscosity(double Gamma, double J) const {
+  const double E = gvboModuli(p_, J).E;
+  const double k2b = p_.k2 + p_.k3 * (E - p_.E0) / (p_.Em - p_.E0);
+  return p_.k1 * std::pow(1 + Gamma / k2b, -p_.k4);
+}
+
+double GvboLaw::shape(double Gamma) const {
+  return p_.a1 + (p_.a2 - p_.a1) * std::exp(-p_.a3 * Gamma);
+}
+
+double GvboLaw::kinematicModulus(double J) const {
+  const double E = gvboModuli(p_, J).E;
+  return 2.0 / 3.0 * p_.Et / (1 - p_.Et / E);
+}
+
+void GvboLaw::update(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
+                     Matrix6* tangent) const {
+  updateWithInfo(step, state_n, state, sigma, tangent, nullptr);
+}
+
+void GvboLaw::updateWithInfo(const PointStep& step, const double* state_n, double* state,
+                             Vector6& sigma, Matrix6* tangent, GvboStepInfo* info) const {
+  LAMINA_CHECK(step.dt >= 0, "GVBO: negative time step");
+  const GvboModuli m = gvboModuli(p_, step.J);
+  const double K = m.lambda + 2 * m.G / 3;
+  StepConstants sc{this, m.E, m.G, 0, 0, step.dt, state_n[GvboState::kA], {}, {}, {}};
+  sc.Etb = 2.0 / 3.0 * p_.Et / (1 - p_.Et / m.E);
+  sc.k2b = p_.k2 + p_.k3 * (m.E - p_.E0) / (p_.Em - p_.E0);
+  // strain increment as a tensor (engineering shear -> tensor shear)
+  Vector6 de = step.eps - step.eps_n;
+  de.tail<3>() *= 0.5;
+  const double dth = de[0] + de[1] + de[2];
+  const Vector6 dev_de = deviator(de);
+  const Vector6 sig_n = Eigen::Map<const Vector6>(state_n + GvboState::kSigma);
+  const Vector6 g_n = Eigen::Map<const Vector6>(state_n + GvboState::kG);
+  const Vector6 f_n = Eigen::Map<const Vector6>(state_n + GvboState::kF);
+  const double p_n = (sig_n[0] + sig_n[1] + sig_n[2]) / 3;
+  const Vector6 s_n = deviator(sig_n);
+  sc.h = 2 * m.G * dev_de;
+  sc.W0 = s_n - g_n + sc.h;
+  sc.V = s_n - f_n + sc.h;
+
+  int iterations = 0;
+  const double Gamma = solveGamma(sc, state_n[GvboState::kGamma], iterations);
+  const Scalars s = evaluate(sc, Gamma);
+  const Vector6 x = s.W / s.D;
+  const Vector6 dev_s = s_n + sc.h - 3 * m.G * s.phi * x;
+  const Vector6 f = f_n + sc.Etb * s.phi * x;
+  const Vector6 g = dev_s - x;
+  const double p = p_n + K * dth;
+  sigma = dev_s;
+  sigma.head<3>().array() += p;
+  Eigen::Map<Vector6>(state + GvboState::kSigma) = sigma;
+  Eigen::Map<Vector6>(state + GvboState::kG) = g;
+  Eigen::Map<Vector6>(state + GvboState::kF) = f;
+  state[GvboState::kA] = s.A;
+  state[GvboState::kGamma] = Gamma;
+  if (info)
+    *info = {Gamma, s.k, s.c * m.E, m.E, iterations};
+  if (!tangent)
+    return;
+  // d sigma / d eps (engineering): K 1x1 + (2G - 3G phi alpha) M + b n^T,
+  // M the deviatoric projector from engineering strain to tensor stress.
+  const double alpha = 2 * m.G * (1 - s.c + s.a) / s.D;
+  Matrix6& T = *tangent;
+  T.setZero();
+  const double a2 = 2 * m.G - 3 * m.G * s.phi * alpha;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      T(i, j) = K + a2 * ((i == j ? 1.0 : 0.0) - 1.0 / 3.0);
+  for (int i = 3; i < 6; ++i)
+    T(i, i) = 0.5 * a2;
+  if (s.normW > 0 && s.dr > 0) {
+    const Vector6 n = s.W / s.normW;
+    const double dGamma = kSqrt23 * alpha * s.D / s.dr; // dGamma/d eps_j = dGamma * n_j
+    const Vector6 y = (s.dW - x * s.dD) / s.D;          // d x / d Gamma at fixed strain
+    const Vector6 b = -3 * m.G * (s.dphi * x + s.phi * y) * dGamma;
+    T += b * n.transpose();
+  }
+}
+
+} // namespace lamina::materials

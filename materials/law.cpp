@@ -1,0 +1,51 @@
+#include "materials/law.hpp"
+
+#include "core/error.hpp"
+
+#include <array>
+#include <utility>
+
+namespace lamina::materials {
+
+namespace {
+constexpr std::array<std::pair<LawKind, const char*>, 4> kLawNames{{
+    {LawKind::Isotropic, "isotropic"},
+    {LawKind::TransverselyIsotropic, "transversely-isotropic"},
+    {LawKind::Anisotropic, "anisotropic"},
+    {LawKind::Gvbo, "gvbo"},
+}};
+} // namespace
+
+const char* toString(LawKind k) {
+  for (const auto& [kind, name] : kLawNames)
+    if (kind == k)
+      return name;
+  return "?";
+}
+
+std::optional<LawKind> parseLawKind(const std::string& name) {
+  for (const auto& [kind, text] : kLawNames)
+    if (name == text)
+      return kind;
+  return std::nullopt;
+}
+
+std::string lawKindNames() {
+  std::string out;
+  for (const auto& [kind, name] : kLawNames)
+    out += (out.empty() ? "" : ", ") + std::string(name);
+  return out;
+}
+
+LinearElasticLaw::LinearElasticLaw(LawKind kind, const Stiffness& C) : kind_(kind), C_(C) {
+  LAMINA_CHECK(kind != LawKind::Gvbo, "the gvbo law is not linear");
+}
+
+void LinearElasticLaw::update(const PointStep& step, const double*, double*, Vector6& sigma,
+                              Matrix6* tangent) const {
+  sigma = C_.matrix() * step.eps;
+  if (tangent)
+    *tangent = C_.matrix();
+}
+
+} // namespace lamina::materials

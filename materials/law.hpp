@@ -1,0 +1,98 @@
+#pragma once
+/// @file law.hpp
+/// @brief The seam for constitutive laws: one vocabulary of law names and one
+/// interface for a law with internal state at a material point.
+///
+/// A law maps, over one time step, the state at t_n and the strain at t_n and
+/// t_{n+1} to the stress at t_{n+1}, the new state and the consistent
+/// (algorithmic) tangent d sigma_{n+1} / d eps_{n+1}. Strains and stresses
+/// are in lamina order (engineering shear strain, Pa) and in the law's
+/// rotation-free frame: for small strain this is the global frame; for
+/// finite deformation the caller rotates with R of F = R U (Green-Naghdi,
+/// polyurea chapter eq. 5; see kinematics.hpp). The state is a flat array
+/// of stateSize() doubles owned by the caller (one block per voxel in the
+/// FFT solver), so a law object is immutable and shared by all its points.
+///
+/// A linear law (isLinear()) has no state and sigma = C eps: solvers keep
+/// their fast paths for it (per-phase C, no per-point update).
+
+#include "materials/stiffness.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace lamina::materials {
+
+/// The law names of the catalog, cell files and case files (one spelling).
+enum class LawKind {
+  Isotropic,             ///< "isotropic": E, nu
+  TransverselyIsotropic, ///< "transversely-isotropic": E1, E2, G12, nu12, nu23 (axis x)
+  Anisotropic,           ///< "anisotropic": C, 6x6, lamina order, Pa
+  Gvbo,                  ///< "gvbo": the polyurea chapter's rate-dependent law
+};
+
+/// @return the file spelling of @p k ("isotropic", ...)
+const char* toString(LawKind k);
+/// @return the law of file spelling @p name, or nothing if unknown
+std::optional<LawKind> parseLawKind(const std::string& name);
+/// @return "isotropic, transversely-isotropic, anisotropic, gvbo" (for messages)
+std::string lawKindNames();
+
+/// Stress or strain vector in lamina order.
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+/// What one step at a material point is given.
+struct PointStep {
+  Vector6 eps_n = Vector6::Zero(); ///< total strain at t_n (rotation-free frame)
+  Vector6 eps = Vector6::Zero();   ///< total strain at t_{n+1}
+  double J_n = 1;                  ///< volume ratio det F at t_n
+  double J = 1;                    ///< volume ratio det F at t_{n+1}
+  double dt = 0;                   ///< t_{n+1} - t_n (s), >= 0
+};
+
+/// A constitutive law with internal state (immutable; state lives outside).
+class ConstitutiveLaw {
+public:
+  virtual ~ConstitutiveLaw() = default;
+  /// @return which law this is
+  virtual LawKind kind() const = 0;
+  /// @return true when sigma = C eps with no state and no rate dependence
+  virtual bool isLinear() const = 0;
+  /// @return doubles of internal state per point (0 for linear laws)
+  virtual int stateSize() const = 0;
+  /// Writes the initial (unstressed, virgin) state into @p state.
+  virtual void initState(double* state) const = 0;
+  /// Instantaneous elastic stiffness at volume ratio @p J (lamina order, Pa);
+  /// the infinite-rate tangent. Linear laws ignore J.
+  virtual Stiffness elasticStiffness(double J = 1.0) const = 0;
+  /// One step: reads @p state_n, writes @p state (may alias state_n),
+  /// @p sigma at t_{n+1} and, if not null, the consistent tangent
+  /// d sigma / d eps at t_{n+1} (lamina order, engineering shear, Pa).
+  virtual void update(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
+                      Matrix6* tangent) const = 0;
+};
+
+/// Shared handle to an immutable law.
+using LawPtr = std::shared_ptr<const ConstitutiveLaw>;
+
+/// Linear elasticity (isotropic, transversely isotropic or anisotropic):
+/// sigma = C eps, no state.
+class LinearElasticLaw final : public ConstitutiveLaw {
+public:
+  /// @param kind which linear law produced @p C (not Gvbo); @param C stiffness
+  LinearElasticLaw(LawKind kind, const Stiffness& C);
+  LawKind kind() const override { return kind_; }
+  bool isLinear() const override { return true; }
+  int stateSize() const override { return 0; }
+  void initState(double*) const override {}
+  Stiffness elasticStiffness(double = 1.0) const override { return C_; }
+  void update(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
+              Matrix6* tangent) const override;
+
+private:
+  LawKind kind_;
+  Stiffness C_;
+};
+
+} // namespace lamina::materials

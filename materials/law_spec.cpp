@@ -1,0 +1,86 @@
+#include "materials/law_spec.hpp"
+
+#include "core/error.hpp"
+#include "core/toml_reader.hpp"
+#include "materials/gvbo_law.hpp"
+
+#include <cmath>
+
+namespace lamina::materials {
+
+Stiffness transverselyIsotropic(double E1, double E2, double G12, double nu12, double nu23) {
+  // invert the compliance (lamina order, engineering shear)
+  Matrix6 s = Matrix6::Zero();
+  s(0, 0) = 1 / E1;
+  s(1, 1) = s(2, 2) = 1 / E2;
+  s(0, 1) = s(1, 0) = s(0, 2) = s(2, 0) = -nu12 / E1;
+  s(1, 2) = s(2, 1) = -nu23 / E2;
+  s(3, 3) = 1 / G12;             // xy
+  s(4, 4) = 2 * (1 + nu23) / E2; // yz, the isotropic plane
+  s(5, 5) = 1 / G12;             // xz
+  return Stiffness(s.inverse()).symmetrized();
+}
+
+namespace {
+
+double positive(const core::TableReader& t, const char* key) {
+  const double v = t.getDouble(key);
+  if (!(v > 0) || !std::isfinite(v))
+    t.fail(key, "must be positive (Pa)");
+  return v;
+}
+
+double poisson(const core::TableReader& t, const char* key) {
+  const double nu = t.getDouble(key);
+  if (!(nu > -1.0 && nu < 0.5))
+    t.fail(key, "Poisson ratio must lie in (-1, 0.5)");
+  return nu;
+}
+
+} // namespace
+
+LawSpec readLawConstants(const core::TableReader& t, LawKind kind) {
+  LawSpec s;
+  s.kind = kind;
+  switch (kind) {
+  case LawKind::Isotropic:
+  case LawKind::Gvbo: {
+    const double E = positive(t, "E"), nu = poisson(t, "nu");
+    s.C = Stiffness::isotropic(E, nu);
+    if (kind == LawKind::Gvbo)
+      s.gvbo = readGvboParameters(t.table("gvbo"), E, nu);
+    break;
+  }
+  case LawKind::TransverselyIsotropic:
+    s.C = transverselyIsotropic(positive(t, "E1"), positive(t, "E2"), positive(t, "G12"),
+                                t.getDouble("nu12"), t.getDouble("nu23"));
+    break;
+  case LawKind::Anisotropic:
+    s.C = Stiffness(readMatrix6(t, "C"));
+    break;
+  }
+  try {
+    s.C.validate("law");
+  } catch (const Error& e) {
+    t.fail(t.has("C") ? "C" : "law", e.message());
+  }
+  return s;
+}
+
+LawPtr LawSpec::make() const {
+  if (kind == LawKind::Gvbo) {
+    LAMINA_CHECK(gvbo.has_value(), "gvbo law without its parameters");
+    return std::make_shared<GvboLaw>(*gvbo);
+  }
+  return std::make_shared<LinearElasticLaw>(kind, C);
+}
+
+LawSpec readLawSpec(const core::TableReader& t) {
+  const std::string name = t.getString("law");
+  const std::optional<LawKind> kind = parseLawKind(name);
+  if (!kind)
+    t.fail("law", "unknown law '" + name + "' (" + lawKindNames() + ")");
+  return readLawConstants(t, *kind);
+}
+
+} // namespace lamina::materials

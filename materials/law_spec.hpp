@@ -1,0 +1,45 @@
+#pragma once
+/// @file law_spec.hpp
+/// @brief A constitutive law as an input file gives it (catalog entry, cell
+/// phase): its kind, its elastic constants and, for GVBO, its parameters;
+/// read by one function for every file.
+///
+/// Keys by `law` (SI units): `isotropic`: E, nu; `transversely-isotropic`:
+/// E1, E2, G12, nu12, nu23 (axis x); `anisotropic`: C (6 rows of 6, lamina
+/// order); `gvbo`: E, nu (= E0, nu0) and a `gvbo` sub-table of Et, p, a1, a2,
+/// a3, k1, k2, k3, k4, Em, A0, Ac, Af (polyurea chapter, Table 1).
+
+#include "materials/gvbo.hpp"
+#include "materials/law.hpp"
+#include "materials/stiffness.hpp"
+
+#include <optional>
+
+namespace lamina::core {
+class TableReader;
+}
+
+namespace lamina::materials {
+
+/// A law read from a file.
+struct LawSpec {
+  LawKind kind = LawKind::Isotropic;  ///< which law
+  Stiffness C;                        ///< elastic stiffness (gvbo: at J = 1, from E0, nu0)
+  std::optional<GvboParameters> gvbo; ///< set for LawKind::Gvbo
+  /// @return the law object: LinearElasticLaw(kind, C) or GvboLaw(*gvbo)
+  LawPtr make() const;
+};
+
+/// Reads the law of @p t from key `law` and the keys of that law. Throws
+/// lamina::Error naming the file and key for an unknown law, a missing key,
+/// E <= 0, nu outside (-1, 0.5), or a C that is not symmetric positive definite.
+LawSpec readLawSpec(const core::TableReader& t);
+
+/// Reads the keys of law @p kind from @p t (as readLawSpec, `law` already known).
+LawSpec readLawConstants(const core::TableReader& t, LawKind kind);
+
+/// Stiffness of a transversely isotropic material with axis x from its
+/// engineering constants (lamina order; G23 = E2 / (2 (1 + nu23))).
+Stiffness transverselyIsotropic(double E1, double E2, double G12, double nu12, double nu23);
+
+} // namespace lamina::materials

@@ -1,0 +1,171 @@
+#include "materials/point_driver.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "materials/kinematics.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <utility>
+
+namespace lamina::materials {
+
+namespace {
+
+constexpr std::array<std::pair<DrivePath, const char*>, 4> kPathNames{{
+    {DrivePath::UniaxialStress, "uniaxial-stress"},
+    {DrivePath::UniaxialStrain, "uniaxial-strain"},
+    {DrivePath::Shear, "shear"},
+    {DrivePath::Confined, "confined"},
+}};
+
+/// Deformation gradient of the path at driven strain e and lateral strains l.
+Eigen::Matrix3d pathF(DrivePath path, double e, const Eigen::Vector2d& l) {
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  switch (path) {
+  case DrivePath::UniaxialStrain:
+    F(0, 0) += e;
+    break;
+  case DrivePath::Confined:
+    F(0, 0) -= e;
+    break;
+  case DrivePath::Shear:
+    F(0, 1) = e;
+    break;
+  case DrivePath::UniaxialStress:
+    F(0, 0) += e;
+    F(1, 1) += l[0];
+    F(2, 2) += l[1];
+    break;
+  }
+  return F;
+}
+
+/// A material point: law, state, accumulated rotation-free strain.
+class Point {
+public:
+  Point(const ConstitutiveLaw& law, Kinematics kin)
+      : law_(law), kin_(kin), state_(static_cast<std::size_t>(law.stateSize())),
+        trial_(state_.size()) {
+    law_.initState(state_.data());
+  }
+
+  /// Stress at F_{n+1} = F over dt from the committed state (not committed).
+  Vector6 trial(const Eigen::Matrix3d& F, double dt, Matrix6* tangent) {
+    PointStep step;
+    step.dt = dt;
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    if (kin_ == Kinematics::Small) {
+      step.eps_n = smallStrain(F_);
+      step.eps = smallStrain(F);
+      step.J_n = 1 + step.eps_n.head<3>().sum();
+      step.J = 1 + step.eps.head<3>().sum();
+    } else {
+      const FiniteIncrement inc = finiteIncrement(F_, F);
+      step.eps_n = eps_hat_;
+      step.eps = eps_hat_ + inc.deps;
+      step.J_n = inc.J_n;
+      step.J = inc.J;
+      R = inc.R;
+    }
+    trial_eps_ = step.eps;
+    Vector6 sigma;
+    law_.update(step, state_.data(), trial_.data(), sigma, tangent);
+    return kin_ == Kinematics::Small ? sigma : rotateTensor(R, sigma);
+  }
+
+  /// Accepts the last trial at F.
+  void commit(const Eigen::Matrix3d& F) {
+    state_ = trial_;
+    eps_hat_ = trial_eps_;
+    F_ = F;
+  }
+
+private:
+  const ConstitutiveLaw& law_;
+  Kinematics kin_;
+  std::vector<double> state_, trial_;
+  Eigen::Matrix3d F_ = Eigen::Matrix3d::Identity();
+  Vector6 eps_hat_ = Vector6::Zero(), trial_eps_ = Vector6::Zero();
+};
+
+} // namespace
+
+const char* toString(DrivePath p) {
+  for (const auto& [path, name] : kPathNames)
+    if (path == p)
+      return name;
+  return "?";
+}
+
+std::optional<DrivePath> parseDrivePath(const std::string& name) {
+  for (const auto& [path, text] : kPathNames)
+    if (name == text)
+      return path;
+  return std::nullopt;
+}
+
+std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& o) {
+  LAMINA_CHECK(o.rate > 0 && std::isfinite(o.rate), "--rate must be positive, got ", o.rate);
+  LAMINA_CHECK(o.to > 0 && std::isfinite(o.to), "--to must be positive, got ", o.to);
+  LAMINA_CHECK(o.steps >= 1, "--steps must be at least 1");
+  LAMINA_CHECK(!(o.path == DrivePath::Confined && o.to >= 1),
+               "confined compression to a strain of 1 or more crushes the point");
+  Point point(law, o.kinematics);
+  std::vector<DriveRow> rows{DriveRow{}};
+  const double dt = o.to / o.rate / o.steps;
+  Eigen::Vector2d l = Eigen::Vector2d::Zero();
+  const int total = o.unload ? 2 * o.steps : o.steps;
+  for (int n = 1; n <= total; ++n) {
+    const int k = n <= o.steps ? n : 2 * o.steps - n;
+    const double e = o.to * k / o.steps;
+    Eigen::Matrix3d F = pathF(o.path, e, l);
+    Matrix6 T;
+    Vector6 sigma = point.trial(F, dt, &T);
+    if (o.path == DrivePath::UniaxialStress) {
+      // lateral stresses to zero: Newton on (l_y, l_z) with the tangent's
+      // lateral block (d eps_hat / d l = 1 / F_ll at the midpoint)
+      int it = 0;
+      const double tol = 1e-10 * std::max(std::abs(sigma[0]), 1.0) + 1e-6;
+      while (std::max(std::abs(sigma[1]), std::abs(sigma[2])) > tol) {
+        LAMINA_CHECK(++it <= 50, "uniaxial stress: lateral stress did not vanish at step ", n);
+        Eigen::Matrix2d Tl;
+        Tl << T(1, 1) / F(1, 1), T(1, 2) / F(2, 2), T(2, 1) / F(1, 1), T(2, 2) / F(2, 2);
+        l -= Tl.lu().solve(Eigen::Vector2d(sigma[1], sigma[2]));
+        F = pathF(o.path, e, l);
+        sigma = point.trial(F, dt, &T);
+      }
+    }
+    point.commit(F);
+    DriveRow row;
+    row.t = n * dt;
+    row.eps = smallStrain(F);
+    row.sigma = sigma;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+void writeDriveCsv(const std::filesystem::path& path, const std::vector<DriveRow>& rows) {
+  std::ostringstream os;
+  os << kDriveHeader << "\n";
+  char buf[32];
+  for (const DriveRow& r : rows) {
+    std::snprintf(buf, sizeof buf, "%.17g", r.t);
+    os << buf;
+    for (int i = 0; i < 6; ++i) {
+      std::snprintf(buf, sizeof buf, ",%.17g", r.eps[i]);
+      os << buf;
+    }
+    for (int i = 0; i < 6; ++i) {
+      std::snprintf(buf, sizeof buf, ",%.17g", r.sigma[i]);
+      os << buf;
+    }
+    os << "\n";
+  }
+  core::writeFileAtomically(path, os.str());
+}
+
+} // namespace lamina::materials

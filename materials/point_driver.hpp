@@ -1,0 +1,67 @@
+#pragma once
+/// @file point_driver.hpp
+/// @brief `materials drive`: one material point driven along a strain path
+/// at a constant rate, the stress-strain history as CSV.
+///
+/// Paths (the driven strain e(t) = rate * t up to `to`, then back to zero
+/// with `unload`; engineering strains of the deformation gradient F):
+/// - uniaxial-strain: F = diag(1 + e, 1, 1) (eps_xx driven, others zero);
+/// - confined: confined compression, F = diag(1 - e, 1, 1);
+/// - shear: simple shear F = I + e e_x (x) e_y (eps_xy = e driven);
+/// - uniaxial-stress: F = diag(1 + e, 1 + l_y, 1 + l_z) with l_y, l_z such
+///   that sigma_yy = sigma_zz = 0 (Newton with the consistent tangent).
+/// Finite kinematics (default): each step F_n -> F goes through
+/// finiteIncrement() (rotation-free frame of eq. 5, J = det F) and the
+/// Cauchy stress is R sigma_hat R^T. Small kinematics: eps = sym(F - I),
+/// J = 1 + tr eps, no rotation (what the FFT cell solver uses).
+/// Output columns: t, eps = sym(F - I) (lamina order, engineering shear),
+/// Cauchy sigma (Pa).
+
+#include "materials/law.hpp"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lamina::materials {
+
+/// The strain paths of `materials drive`.
+enum class DrivePath { UniaxialStress, UniaxialStrain, Shear, Confined };
+/// @return the command-line spelling ("uniaxial-stress", ...)
+const char* toString(DrivePath p);
+/// @return the path of spelling @p name, or nothing
+std::optional<DrivePath> parseDrivePath(const std::string& name);
+
+/// Small strain (sym(F - I), J = 1 + tr eps, no rotation) or finite deformation.
+enum class Kinematics { Small, Finite };
+
+/// What to drive.
+struct DriveOptions {
+  DrivePath path = DrivePath::UniaxialStrain; ///< strain path
+  double rate = 1.0;                          ///< driven strain rate (1/s), > 0
+  double to = 0.1;                            ///< final driven strain (> 0; confined: compression)
+  bool unload = false;                        ///< drive back to zero at the same rate
+  int steps = 200;                            ///< steps per leg
+  Kinematics kinematics = Kinematics::Finite; ///< finite (default) or small
+};
+
+/// One output row.
+struct DriveRow {
+  double t = 0;                    ///< s
+  Vector6 eps = Vector6::Zero();   ///< sym(F - I), lamina order, engineering shear
+  Vector6 sigma = Vector6::Zero(); ///< Cauchy stress, lamina order (Pa)
+};
+
+/// Drives @p law; first row t = 0. Throws lamina::Error on bad options or
+/// when the uniaxial-stress iteration does not converge.
+std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& options);
+
+/// The CSV header of `materials drive`.
+inline constexpr const char* kDriveHeader =
+    "t,eps_xx,eps_yy,eps_zz,eps_xy,eps_yz,eps_xz,sig_xx,sig_yy,sig_zz,sig_xy,sig_yz,sig_xz";
+
+/// Writes @p rows with kDriveHeader to @p path (17 significant digits).
+void writeDriveCsv(const std::filesystem::path& path, const std::vector<DriveRow>& rows);
+
+} // namespace lamina::materials
