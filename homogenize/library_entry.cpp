@@ -32,7 +32,6 @@ std::string entryName(const std::string& base, double J, bool sweep) {
   return buf;
 }
 
-namespace {
 std::string utcNow() {
   const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm tm{};
@@ -41,7 +40,6 @@ std::string utcNow() {
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
 }
-} // namespace
 
 materials::Material makeEntry(const std::string& name, const micro::CellSpec& spec,
                               const micro::UnitCell& cell, const Result& result,
