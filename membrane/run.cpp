@@ -276,6 +276,7 @@ nlohmann::json runCase(const Model& model, const RunOptions& options) {
     return nlohmann::json{{"max_abs_w", s["max_abs_w"]},
                           {"max_speed", s["max_speed"]},
                           {"peak_reaction", reaction},
+                          {"peak_total_reaction", s["peak_reaction_total"]},
                           {"reactions", s["reactions"]}};
   };
   RunOptions with = options, without = options;

@@ -7,6 +7,7 @@
 #include "materials/catalog.hpp"
 #include "materials/layup.hpp"
 #include "materials/library.hpp"
+#include "membrane/loads/blast_pressure.hpp"
 #include "membrane/loads/element_pressure.hpp"
 #include "membrane/loads/follower_drag.hpp"
 
@@ -613,6 +614,55 @@ void readLoads(const core::TableReader& root, Model& model) {
 }
 
 /// [[drag]] (issue 5): on surface regions.
+/// [[blast]]: an air blast from a charge (Kingery-Bulmash, Friedlander,
+/// angle of incidence) or a user pressure history (CSV), acting as a
+/// follower pressure on the selected elements (all by default).
+void readBlasts(const core::TableReader& root, Model& model, const std::filesystem::path& path) {
+  for (const auto& r : root.tableArray("blast")) {
+    if (model.kind != ModelKind::LargeDeflection)
+      r.failHere("[[blast]] needs model = \"large_deflection\" (a follower load)");
+    const bool selected =
+        r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all");
+    const auto elems = selectElements(
+        model.mesh, selected ? readSelector(r) : Selector{"all", "", {}, {}, "all"}, r);
+    const std::string name =
+        r.getString("name", "blast" + std::to_string(model.surface_loads.size()));
+    if (r.has("table")) {
+      if (r.has("charge"))
+        r.fail("table", "give either charge (a Kingery-Bulmash blast) or table (a pressure "
+                        "history), not both");
+      const auto csv = path.parent_path() / r.getString("table");
+      model.surface_loads.push_back(
+          std::make_shared<BlastPressure>(name, elems, PressureTable::readCsv(csv.string())));
+      continue;
+    }
+    BlastCharge c;
+    c.mass = r.getDouble("charge");
+    if (!(c.mass > 0) || !std::isfinite(c.mass))
+      r.fail("charge", "the charge must be a positive mass (kg)");
+    c.tnt_equivalence = r.getDouble("tnt_equivalence", 1.0);
+    if (!(c.tnt_equivalence > 0) || !std::isfinite(c.tnt_equivalence))
+      r.fail("tnt_equivalence", "must be > 0");
+    const auto pos = r.getDoubleArray("position");
+    if (pos.size() != 3)
+      r.fail("position", "expected [x, y, z] (m)");
+    c.position = Eigen::Vector3d(pos[0], pos[1], pos[2]);
+    const std::string burst = r.getString("burst", "hemispherical");
+    if (burst != "hemispherical" && burst != "spherical")
+      r.fail("burst", "unknown burst '" + burst + "' (expected hemispherical or spherical)");
+    c.burst = parseBurst(burst);
+    const std::string range = r.getString("out_of_range", "refuse");
+    if (range != "refuse" && range != "clamp")
+      r.fail("out_of_range", "expected \"refuse\" or \"clamp\"");
+    c.policy = range == "clamp" ? OutOfRange::Clamp : OutOfRange::Refuse;
+    try {
+      model.surface_loads.push_back(std::make_shared<BlastPressure>(name, elems, model.mesh, c));
+    } catch (const Error& e) {
+      r.fail("charge", e.message());
+    }
+  }
+}
+
 void readDrags(const core::TableReader& root, Model& model) {
   const Mesh& mesh = model.mesh;
   const int n = mesh.numNodes();
@@ -805,6 +855,7 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   readTimeAndOutput(root, model);
   std::vector<int> owner = readConstraints(root, model);
   readLoads(root, model);
+  readBlasts(root, model, path);
   readDrags(root, model);
   if (model.compare_without_drag && model.drags.empty() && model.surface_loads.empty())
     root.fail("compare_without_drag", "needs at least one [[drag]] table");
