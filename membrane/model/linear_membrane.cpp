@@ -20,7 +20,9 @@ LinearMembrane::LinearMembrane(const Model& model) : model_(model) {
 }
 
 void LinearMembrane::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
-  multiply(K_, u, f);
+  if (!Kb_) // Newmark runs never ask: they use K itself
+    Kb_ = std::make_unique<BlockMatrix>(K_);
+  Kb_->multiply(u, f);
 }
 
 double LinearMembrane::strainEnergy(const Eigen::VectorXd& u) const {
