@@ -5,6 +5,7 @@
 /// the nonlinear cell under that strain-rate history (nonlinear_run.hpp).
 
 #include "core/error.hpp"
+#include "core/memory.hpp"
 #include "homogenize/homogenizer.hpp"
 #include "homogenize/library_entry.hpp"
 #include "homogenize/nonlinear_run.hpp"
@@ -138,6 +139,17 @@ int main(int argc, char** argv) {
     std::array<int, 3> n = spec.resolution;
     if (resolution > 0)
       n = {resolution, resolution, resolution};
+    // checked before anything large is allocated: about 110 bytes per voxel
+    // (three CG vectors, FFT buffers, phase map; docs/homogenize.md)
+    const std::uint64_t voxels = static_cast<std::uint64_t>(n[0]) *
+                                 static_cast<std::uint64_t>(n[1]) *
+                                 static_cast<std::uint64_t>(n[2]);
+    core::requireMemory(voxels * 110,
+                        "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
+                            " x " + std::to_string(n[2]) + " voxels",
+                        {cell_path, 0, ""},
+                        "run it distributed: mpirun -np N homogenize " + cell_path +
+                            " ... (each rank holds 1/N of the fields)");
     const micro::UnitCell cell = micro::buildCell(spec, n);
     if (!path_name.empty() || !tangent.rates.empty()) {
       path.path = *materials::parseDrivePath(path_name.empty() ? "uniaxial-strain" : path_name);
