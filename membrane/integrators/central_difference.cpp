@@ -16,6 +16,12 @@ CentralDifference::CentralDifference(const Model& model, const Structure& struct
     : model_(model), structure_(structure), loads_(loads), cons_(cons), dt_(dt), damping_(damping) {
   LAMINA_CHECK(dt > 0 && std::isfinite(dt), "explicit time step must be > 0");
   LAMINA_CHECK(damping >= 0, "damping must be >= 0");
+  // Row sums of the gradient inertia M_D are zero (B of a translation is 0):
+  // lumping would drop micro-inertia silently
+  if (structure.microMass())
+    throw Error("micro-inertia (a section with a dispersion zeta^2 D) needs the Newmark "
+                "scheme: its gradient mass cannot be lumped; use time.integrator = \"newmark\" "
+                "or micro_inertia = false in the section");
   const int ndof = structure.numDofs();
   // Lumped mass: row sums (the diagonal itself for a lumped model).
   const SparseMatrix& M = structure.mass();

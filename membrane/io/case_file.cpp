@@ -218,6 +218,33 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
   r.fail("type", "unknown mesh type '" + type + "' (rectangle, gmsh)");
 }
 
+/// Micro-inertia keys of a section: an inline `dispersion` (zeta^2 D, 6x6,
+/// kg/m) for inline materials, and `micro_inertia = false` to drop the
+/// material's (on by default).
+void readMicroInertia(const core::TableReader& r, bool named, Section& s) {
+  if (r.has("dispersion")) {
+    if (named)
+      r.fail("dispersion", "only with an inline material (E or C): a named material brings its "
+                           "own dispersion from the library");
+    const auto d = r.getMatrix("dispersion");
+    bool ok = d.size() == 6;
+    for (const auto& row : d)
+      ok = ok && row.size() == 6;
+    if (!ok)
+      r.fail("dispersion", "expected 6 rows of 6 (zeta^2 D, kg/m, lamina order)");
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        s.dispersion(i, j) = d[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    try {
+      materials::validateDispersion(s.dispersion, "section");
+    } catch (const Error& e) {
+      r.fail("dispersion", e.message());
+    }
+  }
+  if (!r.getBool("micro_inertia", true))
+    s.dispersion.setZero();
+}
+
 /// Reads one [[section]]: material by name, inline isotropic/anisotropic, or plies.
 /// The large-deflection keys of a [[section]] (material axis, pre-stress,
 /// tension_only, failure thresholds); an error under the linear model.
@@ -269,6 +296,8 @@ Section readSection(const core::TableReader& r, materials::MaterialSource& res, 
     const auto m = lookupMaterial(res, s.material, r, "material");
     s.D = m.C.matrix();
     s.density = m.density;
+    if (m.dispersion)
+      s.dispersion = *m.dispersion;
     default_thickness = m.thickness;
   } else if (iso) {
     const double E = r.getDouble("E"), nu = r.getDouble("nu");
@@ -305,9 +334,15 @@ Section readSection(const core::TableReader& r, materials::MaterialSource& res, 
     }
     s.D = m.C.matrix();
     s.density = m.density;
+    if (m.dispersion)
+      s.dispersion = *m.dispersion;
     default_thickness = m.thickness;
     s.material = "layup of " + std::to_string(plies.size()) + " plies";
   }
+  readMicroInertia(r, by_name || layup, s);
+  if (kind == ModelKind::LargeDeflection && s.hasMicroInertia())
+    r.failHere("the material has micro-inertia (a dispersion), which only the linear model "
+               "carries: set micro_inertia = false for the large-deflection model");
   if (r.has("thickness") || !default_thickness) {
     s.thickness = r.getDouble("thickness");
     if (!(s.thickness > 0))

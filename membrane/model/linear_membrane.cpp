@@ -13,6 +13,7 @@ LinearMembrane::LinearMembrane(const Model& model) : model_(model) {
   GlobalMatrices g = assemble(model.mesh, model.sections, model.time.lumped);
   K_ = std::move(g.K);
   M_ = std::move(g.M);
+  MD_ = std::move(g.MD);
   for (const auto& [node, m] : model.point_masses)
     for (int c = 0; c < 3; ++c)
       M_.coeffRef(3 * node + c, 3 * node + c) += m;

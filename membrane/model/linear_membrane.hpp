@@ -28,11 +28,12 @@ public:
   double stableStep() const override;
   /// "strain" and "stress" (6 per element, lamina order; sigma = D eps, eq. 15)
   std::vector<CellField> cellFields(const Eigen::VectorXd& u) const override;
+  const SparseMatrix* microMass() const override { return MD_.rows() ? &MD_ : nullptr; }
   double setupSeconds() const override { return assembly_s_; }
 
 private:
   const Model& model_;
-  SparseMatrix K_, M_;
+  SparseMatrix K_, M_, MD_;
   mutable std::unique_ptr<BlockMatrix> Kb_; // for internalForce (explicit runs only)
   double assembly_s_ = 0;
 };
