@@ -9,10 +9,15 @@
 namespace lamina::homogenize {
 
 CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
-                           const std::vector<materials::Stiffness>& C)
-    : grid_(grid), phase_(std::move(phase)) {
-  LAMINA_CHECK(phase_.size() == grid.size(), "phase map has ", phase_.size(), " voxels, the grid ",
-               grid.size());
+                           const std::vector<materials::Stiffness>& C, const Distribution& dist)
+    : grid_(grid), dist_(dist), phase_(std::move(phase)) {
+  LAMINA_CHECK(phase_.size() == dist.localSize(), "phase map has ", phase_.size(),
+               " voxels, the grid (slab) ", dist.localSize());
+  phase_lo_.resize(dist.planeSize());
+  std::vector<std::int32_t> unused(dist.planeSize());
+  dist.exchangeHalo(phase_.data(), phase_lo_.data(), unused.data());
+  halo_lo_.resize(3 * dist.planeSize());
+  halo_hi_.resize(3 * dist.planeSize());
   for (const auto& c : C)
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
@@ -24,16 +29,32 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
     const bool is_iso =
         (c.matrix() - iso).cwiseAbs().maxCoeff() <= 1e-14 * c.matrix().cwiseAbs().maxCoeff();
     iso_.push_back(is_iso ? 1 : 0);
+    all_iso_ = all_iso_ && is_iso;
     lame_.push_back(lambda);
     lame_.push_back(mu);
   }
+  for (std::int32_t p : phase_lo_)
+    LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C.size(), "phase index ", p,
+                 " has no stiffness");
   for (std::int32_t p : phase_)
     LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C.size(), "phase index ", p,
                  " has no stiffness");
   // planes_ is sized by apply() for the number of threads it runs with
 }
 
-// Stress of voxel plane i (voxels i, spanning nodes i and i+1) into S
+// Row j of component c of node plane p (local; -1 and nx are the halo planes).
+const double* CellOperator::nodeRow(const double* u, int c, int p, int j) const {
+  const std::size_t n2 = static_cast<std::size_t>(grid_.n[2]), plane = dist_.planeSize();
+  const std::size_t off = static_cast<std::size_t>(c) * plane + static_cast<std::size_t>(j) * n2;
+  if (p < 0)
+    return halo_lo_.data() + off;
+  if (p >= dist_.nx())
+    return halo_hi_.data() + off;
+  return u + static_cast<std::size_t>(c) * dist_.localSize() + static_cast<std::size_t>(p) * plane +
+         static_cast<std::size_t>(j) * n2;
+}
+
+// Stress of voxel plane i (local, -1 .. nx-1; spanning nodes i and i+1) into S
 // (structure of arrays: component a of voxel (j, k) at S[a*componentStride() + j*n2 + k]).
 // The rotated gradient factorises into differences and averages along each
 // axis: d/dx = Dx Ay Az, d/dy = Ax Dy Az, d/dz = Ax Ay Dz. Per node column k
@@ -42,20 +63,17 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
 void CellOperator::stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S,
                                double* acc, double* energy, double* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
-  const std::size_t N = grid_.size(), P = componentStride();
+  const std::size_t P = componentStride();
   const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
-  const int i1 = (i + 1 == grid_.n[0]) ? 0 : i + 1;
   const std::size_t L = static_cast<std::size_t>(n2) + 1; // one wrapped column
+  const std::int32_t* phase =
+      i < 0 ? phase_lo_.data() : phase_.data() + static_cast<std::size_t>(i) * dist_.planeSize();
   for (int j = 0; j < n1; ++j) {
     const int j1 = (j + 1 == n1) ? 0 : j + 1;
-    const std::size_t r00 = (static_cast<std::size_t>(i) * n1 + j) * n2;
-    const std::size_t r10 = (static_cast<std::size_t>(i1) * n1 + j) * n2;
-    const std::size_t r01 = (static_cast<std::size_t>(i) * n1 + j1) * n2;
-    const std::size_t r11 = (static_cast<std::size_t>(i1) * n1 + j1) * n2;
     if (u) {
       for (int c = 0; c < 3; ++c) {
-        const double* uc = u + c * N;
-        const double *a = uc + r00, *b = uc + r10, *cc = uc + r01, *d = uc + r11;
+        const double *a = nodeRow(u, c, i, j), *b = nodeRow(u, c, i + 1, j);
+        const double *cc = nodeRow(u, c, i, j1), *d = nodeRow(u, c, i + 1, j1);
         double* X = scratch + (3 * c + 0) * L;
         double* Y = scratch + (3 * c + 1) * L;
         double* Z = scratch + (3 * c + 2) * L;
@@ -70,6 +88,10 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
       }
     }
     const std::size_t row = static_cast<std::size_t>(j) * n2;
+    if (u && all_iso_) {
+      isotropicRow(phase + row, E, S + row, acc, energy, scratch);
+      continue;
+    }
     for (int k = 0; k < n2; ++k) {
       double e[6] = {E[0], E[1], E[2], E[3], E[4], E[5]}; // lamina order, engineering shear
       if (u) {
@@ -89,7 +111,7 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
         e[4] += g[1][2] + g[2][1];
         e[5] += g[0][2] + g[2][0];
       }
-      const std::size_t ph = static_cast<std::size_t>(phase_[r00 + k]);
+      const std::size_t ph = static_cast<std::size_t>(phase[row + k]);
       double sv[6];
       if (iso_[ph]) {
         const double lambda = lame_[2 * ph], mu = lame_[2 * ph + 1];
@@ -121,6 +143,67 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
   }
 }
 
+// The stress row of a cell whose phases are all isotropic, from the X, Y, Z
+// column sums in scratch: the phase moduli are gathered into two rows first,
+// so the loop over the voxels has no branch and no indirection and runs in
+// SIMD lanes (omp simd lets the sums of <sigma> and the energy be reordered).
+void CellOperator::isotropicRow(const std::int32_t* phase, const std::array<double, 6>& E,
+                                double* S, double* acc, double* energy, double* scratch) const {
+  const int n2 = grid_.n[2];
+  const std::size_t P = componentStride();
+  const std::size_t L = static_cast<std::size_t>(n2) + 1;
+  const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
+  double* lam = scratch + 9 * L;
+  double* mu = scratch + 10 * L;
+  for (int k = 0; k < n2; ++k) {
+    const std::size_t ph = static_cast<std::size_t>(phase[k]);
+    lam[k] = lame_[2 * ph];
+    mu[k] = lame_[2 * ph + 1];
+  }
+  const double *X0 = scratch, *Y0 = scratch + L, *Z0 = scratch + 2 * L;
+  const double *X1 = scratch + 3 * L, *Y1 = scratch + 4 * L, *Z1 = scratch + 5 * L;
+  const double *X2 = scratch + 6 * L, *Y2 = scratch + 7 * L, *Z2 = scratch + 8 * L;
+  double *S0 = S, *S1 = S + P, *S2 = S + 2 * P, *S3 = S + 3 * P, *S4 = S + 4 * P, *S5 = S + 5 * P;
+  const double E0 = E[0], E1 = E[1], E2 = E[2], E3 = E[3], E4 = E[4], E5 = E[5];
+  double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, en = 0;
+#pragma omp simd reduction(+ : a0, a1, a2, a3, a4, a5, en)
+  for (int k = 0; k < n2; ++k) {
+    // g_cd = d u_c / d x_d; strain in lamina order, engineering shear
+    const double e0 = E0 + cx * (X0[k] + X0[k + 1]);
+    const double e1 = E1 + cy * (Y1[k] + Y1[k + 1]);
+    const double e2 = E2 + cz * (Z2[k + 1] - Z2[k]);
+    const double e3 = E3 + cy * (Y0[k] + Y0[k + 1]) + cx * (X1[k] + X1[k + 1]);
+    const double e4 = E4 + cz * (Z1[k + 1] - Z1[k]) + cy * (Y2[k] + Y2[k + 1]);
+    const double e5 = E5 + cz * (Z0[k + 1] - Z0[k]) + cx * (X2[k] + X2[k + 1]);
+    const double lt = lam[k] * (e0 + e1 + e2), m2 = 2 * mu[k];
+    const double s0 = lt + m2 * e0, s1 = lt + m2 * e1, s2 = lt + m2 * e2;
+    const double s3 = mu[k] * e3, s4 = mu[k] * e4, s5 = mu[k] * e5;
+    S0[k] = s0;
+    S1[k] = s1;
+    S2[k] = s2;
+    S3[k] = s3;
+    S4[k] = s4;
+    S5[k] = s5;
+    a0 += s0;
+    a1 += s1;
+    a2 += s2;
+    a3 += s3;
+    a4 += s4;
+    a5 += s5;
+    en += s0 * e0 + s1 * e1 + s2 * e2 + s3 * e3 + s4 * e4 + s5 * e5;
+  }
+  if (acc) {
+    acc[0] += a0;
+    acc[1] += a1;
+    acc[2] += a2;
+    acc[3] += a3;
+    acc[4] += a4;
+    acc[5] += a5;
+  }
+  if (energy)
+    *energy += en;
+}
+
 // Nodal forces of node plane i from voxel planes i-1 (prev) and i (cur):
 // f = D^T sigma, i.e. f_c = sum over the 8 voxels around the node of the
 // transposed gradient weights times sigma_cd. A node is corner 1 of the
@@ -130,7 +213,7 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
 void CellOperator::divergencePlane(int i, const double* prev, const double* cur, double* f,
                                    double* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
-  const std::size_t N = grid_.size(), P = componentStride();
+  const std::size_t N = dist_.localSize(), P = componentStride();
   const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
   const std::size_t L = static_cast<std::size_t>(n2) + 1; // index k+1 holds voxel k, 0 holds n2-1
   double* X0 = scratch; // x-terms of f_x, f_y, f_z: sigma_xx, xy, xz
@@ -193,7 +276,9 @@ std::size_t CellOperator::planeStride() const {
 
 void CellOperator::apply(const double* u, const std::array<double, 6>& E, double* f,
                          std::array<double, 6>* average, double* energy) const {
-  const int n0 = grid_.n[0];
+  const int n0 = dist_.nx(); // this slab's planes
+  if (u)
+    dist_.exchangeHalo(u, 3, halo_lo_.data(), halo_hi_.data());
   const std::size_t P = planeStride();
   const int nt = std::max(1, std::min(omp_get_max_threads(), n0));
   if (planes_.size() < 2 * P * static_cast<std::size_t>(nt))
@@ -211,7 +296,7 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
     double acc[6] = {0, 0, 0, 0, 0, 0};
     double my_energy = 0;
     double* en = energy ? &my_energy : nullptr;
-    std::vector<double> scratch(9 * (static_cast<std::size_t>(grid_.n[2]) + 1));
+    std::vector<double> scratch(11 * (static_cast<std::size_t>(grid_.n[2]) + 1));
 #pragma omp for schedule(dynamic, 1) nowait
     for (int slab = 0; slab < slabs; ++slab) {
       const int begin = static_cast<int>(static_cast<long>(n0) * slab / slabs);
@@ -219,7 +304,7 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
       double* prev = planes_.data() + 2 * P * static_cast<std::size_t>(t);
       double* cur = prev + P;
       if (f && begin < end)
-        stressPlane(begin == 0 ? n0 - 1 : begin - 1, u, E, prev, nullptr, nullptr, scratch.data());
+        stressPlane(begin - 1, u, E, prev, nullptr, nullptr, scratch.data());
       for (int i = begin; i < end; ++i) {
         stressPlane(i, u, E, cur, average ? acc : nullptr, en, scratch.data());
         if (f)
@@ -234,8 +319,13 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
       total_energy += my_energy;
     }
   }
+  double sums[7] = {total[0], total[1], total[2], total[3], total[4], total[5], total_energy};
+  if (average || energy)
+    dist_.sum(sums, 7);
+  for (int a = 0; a < 6; ++a)
+    total[a] = sums[a];
   if (energy)
-    *energy = total_energy;
+    *energy = sums[6];
   if (average)
     for (int a = 0; a < 6; ++a)
       (*average)[static_cast<std::size_t>(a)] = total[a] / static_cast<double>(grid_.size());

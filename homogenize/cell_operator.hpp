@@ -24,6 +24,7 @@
 /// volume is left out of A (it cancels between A, the right-hand side and the
 /// preconditioner).
 
+#include "homogenize/distribution.hpp"
 #include "homogenize/grid.hpp"
 #include "materials/stiffness.hpp"
 
@@ -37,13 +38,17 @@ namespace lamina::homogenize {
 class CellOperator {
 public:
   /// @param grid the voxel grid
-  /// @param phase phase index per voxel (grid.size() entries, each < C.size())
+  /// @param phase phase index per voxel of this process's slab
+  ///   (dist.localSize() entries, each < C.size())
   /// @param C stiffness per phase, lamina order (Pa)
+  /// @param dist the slab decomposition (must outlive this object)
   CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
-               const std::vector<materials::Stiffness>& C);
+               const std::vector<materials::Stiffness>& C, const Distribution& dist);
 
   /// Computes f = D^T C (E + D u) and, if @p average is not null, the
-  /// volume-averaged stress <C (E + D u)> (lamina order).
+  /// volume-averaged stress <C (E + D u)> (lamina order). Distributed: u and
+  /// f are this rank's slab (3 x dist.localSize()), the halo planes of u are
+  /// exchanged here, and average and energy are summed over all ranks.
   /// @param u nodal displacement (3 x N, component-major), or nullptr for u = 0
   /// @param E macroscopic strain (lamina order, engineering shear)
   /// @param f nodal forces (3 x N) on exit, or nullptr to skip the divergence
@@ -59,16 +64,23 @@ public:
 private:
   std::size_t componentStride() const;
   std::size_t planeStride() const;
+  const double* nodeRow(const double* u, int c, int p, int j) const;
   void stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S, double* acc,
                    double* energy, double* scratch) const;
+  void isotropicRow(const std::int32_t* phase, const std::array<double, 6>& E, double* S,
+                    double* acc, double* energy, double* scratch) const;
   void divergencePlane(int i, const double* prev, const double* cur, double* f,
                        double* scratch) const;
 
   Grid grid_;
-  std::vector<std::int32_t> phase_;
-  std::vector<double> C_;              // 36 per phase, row-major, lamina order
-  std::vector<char> iso_;              // per phase: isotropic (use lame_)
-  std::vector<double> lame_;           // per phase: lambda, mu
+  const Distribution& dist_;
+  std::vector<std::int32_t> phase_;               // this slab's voxels
+  std::vector<std::int32_t> phase_lo_;            // voxel plane x0 - 1 (halo)
+  mutable std::vector<double> halo_lo_, halo_hi_; // node planes x0 - 1, x0 + nx of u
+  std::vector<double> C_;                         // 36 per phase, row-major, lamina order
+  std::vector<char> iso_;                         // per phase: isotropic (use lame_)
+  bool all_iso_ = true;                           // every phase isotropic (isotropicRow)
+  std::vector<double> lame_;                      // per phase: lambda, mu
   mutable std::vector<double> planes_; // per thread: two voxel planes of stress (6 per voxel)
 };
 

@@ -89,21 +89,25 @@ DispersionAccumulator::DispersionAccumulator(const Grid& grid,
   std::memset(field.data(), 0, 3 * N * sizeof(double));
   for (std::size_t v = 0; v < N; ++v)
     field.data()[v] = s_of_phase[static_cast<std::size_t>(phase[v])];
-  const VectorFft fft(grid, 0, false);
-  fft.forward(field.data(), fft.work());
+  const Distribution serial = Distribution::serial(grid);
+  VectorFft fft(grid, serial, 0, false, Precision::Double);
+  fft.forward(field.data());
   const std::size_t Nc = grid.complexSize();
+  const double* w = fft.spectrum<double>(); // component 0 first
   s_hat_.resize(Nc);
   for (std::size_t i = 0; i < Nc; ++i)
-    s_hat_[i] = {fft.work()[i][0], fft.work()[i][1]};
+    s_hat_[i] = {w[2 * i], w[2 * i + 1]};
 }
 
 void DispersionAccumulator::addLoadCase(int k, const double* u) {
   LAMINA_CHECK(k >= 0 && k < 6, "load case ", k, " is not in 0..5");
   const std::size_t Nc = grid_.complexSize();
   const double NN = static_cast<double>(grid_.size()) * static_cast<double>(grid_.size());
-  const VectorFft fft(grid_, 0, false);
-  fft.forward(u, fft.work());
-  const fftw_complex* w = fft.work();
+  const Distribution serial = Distribution::serial(grid_);
+  VectorFft fft(grid_, serial, 0, false, Precision::Double);
+  fft.forward(u);
+  const double* w = fft.spectrum<double>();
+  const std::size_t chunk = fft.chunkSize(); // complex entries between components
   std::vector<Complex>& h = h_hat_[static_cast<std::size_t>(k)];
   h.assign(3 * Nc, Complex(0, 0));
   const Eigen::Matrix3d T = unitStrain(k);
@@ -127,7 +131,8 @@ void DispersionAccumulator::addLoadCase(int k, const double* u) {
     const Complex to_h = Complex(0, -1) * std::polar(1.0, -m.theta); // 1 / (i e^{i theta})
     for (int c = 0; c < 3; ++c) {
       const std::size_t at = static_cast<std::size_t>(c) * Nc + m.index;
-      const Complex Hc(w[at][0], w[at][1]);
+      const std::size_t in = 2 * (static_cast<std::size_t>(c) * chunk + m.index);
+      const Complex Hc(w[in], w[in + 1]);
       H2 += m.weight * m.mass * std::norm(Hc);
       h[at] = Hc + to_h * s * v[c];
     }

@@ -3,11 +3,19 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 
+#include <fftw3.h>
+#include <omp.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <mutex>
 #include <new>
+#include <type_traits>
+
+#ifdef LAMINA_WITH_MPI
+#include <fftw3-mpi.h>
+#endif
 
 namespace lamina::homogenize {
 
@@ -28,7 +36,151 @@ std::mutex& plannerMutex() {
   static std::mutex m;
   return m;
 }
+
+// The FFTW calls of one precision behind one name.
+template <class T>
+struct Fftw;
+template <>
+struct Fftw<double> {
+  using Plan = fftw_plan;
+  using Complex = fftw_complex;
+  static void* alloc(std::size_t n) { return fftw_alloc_complex(n); }
+  static void free(void* p) { fftw_free(p); }
+  static void threads(int n) { fftw_plan_with_nthreads(n); }
+  static Plan r2c(const Grid& g, double* in, Complex* out, unsigned flags) {
+    return fftw_plan_dft_r2c_3d(g.n[0], g.n[1], g.n[2], in, out, flags);
+  }
+  static Plan c2r(const Grid& g, Complex* in, double* out, unsigned flags) {
+    return fftw_plan_dft_c2r_3d(g.n[0], g.n[1], g.n[2], in, out, flags);
+  }
+#ifdef LAMINA_WITH_MPI
+  static Plan mpiR2c(const Grid& g, double* in, Complex* out, unsigned flags) {
+    return fftw_mpi_plan_dft_r2c_3d(g.n[0], g.n[1], g.n[2], in, out, MPI_COMM_WORLD, flags);
+  }
+  static Plan mpiC2r(const Grid& g, Complex* in, double* out, unsigned flags) {
+    return fftw_mpi_plan_dft_c2r_3d(g.n[0], g.n[1], g.n[2], in, out, MPI_COMM_WORLD, flags);
+  }
+  static std::ptrdiff_t localSize(const Grid& g) {
+    ptrdiff_t n0 = 0, s0 = 0;
+    return fftw_mpi_local_size_3d(g.n[0], g.n[1], g.n[2] / 2 + 1, MPI_COMM_WORLD, &n0, &s0);
+  }
+  static void execR2c(Plan p, double* in, Complex* out) {
+    fftw_mpi_execute_dft_r2c(p, in, out);
+  }
+  static void execC2r(Plan p, Complex* in, double* out) {
+    fftw_mpi_execute_dft_c2r(p, in, out);
+  }
+  static void gatherWisdom() {
+    fftw_mpi_gather_wisdom(MPI_COMM_WORLD);
+  }
+  static void broadcastWisdom() {
+    fftw_mpi_broadcast_wisdom(MPI_COMM_WORLD);
+  }
+#endif
+  static void serialR2c(Plan p, double* in, Complex* out) {
+    fftw_execute_dft_r2c(p, in, out);
+  }
+  static void serialC2r(Plan p, Complex* in, double* out) {
+    fftw_execute_dft_c2r(p, in, out);
+  }
+  static void destroy(Plan p) {
+    fftw_destroy_plan(p);
+  }
+  static void importWisdom(const char* path) {
+    fftw_import_wisdom_from_filename(path);
+  }
+  static char* exportWisdom() {
+    return fftw_export_wisdom_to_string();
+  }
+  static const char* suffix() {
+    return "";
+  }
+};
+template <>
+struct Fftw<float> {
+  using Plan = fftwf_plan;
+  using Complex = fftwf_complex;
+  static void* alloc(std::size_t n) { return fftwf_alloc_complex(n); }
+  static void free(void* p) { fftwf_free(p); }
+  static void threads(int n) { fftwf_plan_with_nthreads(n); }
+  static Plan r2c(const Grid& g, float* in, Complex* out, unsigned flags) {
+    return fftwf_plan_dft_r2c_3d(g.n[0], g.n[1], g.n[2], in, out, flags);
+  }
+  static Plan c2r(const Grid& g, Complex* in, float* out, unsigned flags) {
+    return fftwf_plan_dft_c2r_3d(g.n[0], g.n[1], g.n[2], in, out, flags);
+  }
+#ifdef LAMINA_WITH_MPI
+  static Plan mpiR2c(const Grid& g, float* in, Complex* out, unsigned flags) {
+    return fftwf_mpi_plan_dft_r2c_3d(g.n[0], g.n[1], g.n[2], in, out, MPI_COMM_WORLD, flags);
+  }
+  static Plan mpiC2r(const Grid& g, Complex* in, float* out, unsigned flags) {
+    return fftwf_mpi_plan_dft_c2r_3d(g.n[0], g.n[1], g.n[2], in, out, MPI_COMM_WORLD, flags);
+  }
+  static std::ptrdiff_t localSize(const Grid& g) {
+    ptrdiff_t n0 = 0, s0 = 0;
+    return fftwf_mpi_local_size_3d(g.n[0], g.n[1], g.n[2] / 2 + 1, MPI_COMM_WORLD, &n0, &s0);
+  }
+  static void execR2c(Plan p, float* in, Complex* out) {
+    fftwf_mpi_execute_dft_r2c(p, in, out);
+  }
+  static void execC2r(Plan p, Complex* in, float* out) {
+    fftwf_mpi_execute_dft_c2r(p, in, out);
+  }
+  static void gatherWisdom() {
+    fftwf_mpi_gather_wisdom(MPI_COMM_WORLD);
+  }
+  static void broadcastWisdom() {
+    fftwf_mpi_broadcast_wisdom(MPI_COMM_WORLD);
+  }
+#endif
+  static void serialR2c(Plan p, float* in, Complex* out) {
+    fftwf_execute_dft_r2c(p, in, out);
+  }
+  static void serialC2r(Plan p, Complex* in, float* out) {
+    fftwf_execute_dft_c2r(p, in, out);
+  }
+  static void destroy(Plan p) {
+    fftwf_destroy_plan(p);
+  }
+  static void importWisdom(const char* path) {
+    fftwf_import_wisdom_from_filename(path);
+  }
+  static char* exportWisdom() {
+    return fftwf_export_wisdom_to_string();
+  }
+  static const char* suffix() {
+    return "-single";
+  }
+};
+
+// Wisdom is an optimisation only: failures to read or write it are ignored.
+template <class T>
+void importWisdom(const std::string& path) {
+  static bool done = false;
+  if (done || path.empty())
+    return;
+  done = true;
+  Fftw<T>::importWisdom(path.c_str());
+}
+
+template <class T>
+void exportWisdom(const std::string& path) {
+  if (path.empty())
+    return;
+  try {
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+    std::unique_ptr<char, void (*)(void*)> text(Fftw<T>::exportWisdom(), std::free);
+    if (text)
+      core::writeFileAtomically(path, text.get());
+  } catch (const std::exception&) {
+  }
+}
 } // namespace
+
+bool initFftwThreads() {
+  static const bool ok = fftw_init_threads() != 0 && fftwf_init_threads() != 0;
+  return ok;
+}
 
 std::string VectorFft::wisdomPath() {
   if (const char* p = std::getenv("LAMINA_FFTW_WISDOM"))
@@ -40,68 +192,211 @@ std::string VectorFft::wisdomPath() {
   return "";
 }
 
+// One precision's plans: one in-place r2c and one c2r plan for a single
+// component, executed on each of the three chunks (new-array execute: the
+// chunks are equally aligned).
+struct VectorFft::Plans {
+  virtual ~Plans() = default;
+  virtual void forward(void* buffer, std::size_t chunk) = 0;
+  virtual void backward(void* buffer, std::size_t chunk) = 0;
+};
+
 namespace {
-// Wisdom is an optimisation only: failures to read or write it are ignored.
-void importWisdom(const std::string& path) {
-  static bool done = false;
-  if (done || path.empty())
-    return;
-  done = true;
-  fftw_import_wisdom_from_filename(path.c_str());
+template <class T>
+struct PlansOf : VectorFft::Plans {
+  using F = Fftw<T>;
+  typename F::Plan r2c = nullptr, c2r = nullptr;
+  bool mpi = false;
+  ~PlansOf() override {
+    if (r2c)
+      F::destroy(r2c);
+    if (c2r)
+      F::destroy(c2r);
+  }
+  static T* real(void* buffer, std::size_t chunk, int c) {
+    return reinterpret_cast<T*>(static_cast<typename F::Complex*>(buffer) + c * chunk);
+  }
+  static typename F::Complex* modes(void* buffer, std::size_t chunk, int c) {
+    return static_cast<typename F::Complex*>(buffer) + c * chunk;
+  }
+  void forward(void* buffer, std::size_t chunk) override {
+    for (int c = 0; c < 3; ++c) {
+#ifdef LAMINA_WITH_MPI
+      if (mpi) {
+        F::execR2c(r2c, real(buffer, chunk, c), modes(buffer, chunk, c));
+        continue;
+      }
+#endif
+      F::serialR2c(r2c, real(buffer, chunk, c), modes(buffer, chunk, c));
+    }
+  }
+  void backward(void* buffer, std::size_t chunk) override {
+    for (int c = 0; c < 3; ++c) {
+#ifdef LAMINA_WITH_MPI
+      if (mpi) {
+        F::execC2r(c2r, modes(buffer, chunk, c), real(buffer, chunk, c));
+        continue;
+      }
+#endif
+      F::serialC2r(c2r, modes(buffer, chunk, c), real(buffer, chunk, c));
+    }
+  }
+};
+
+template <class T>
+std::unique_ptr<VectorFft::Plans> makePlans(const Grid& grid, const Distribution& dist, int threads,
+                                            bool measure, void*& buffer, std::size_t& chunk) {
+  using F = Fftw<T>;
+  auto plans = std::make_unique<PlansOf<T>>();
+  plans->mpi = dist.distributed();
+  std::string wisdom = measure ? VectorFft::wisdomPath() : std::string();
+  if (!wisdom.empty()) {
+    wisdom += F::suffix();
+    if (dist.distributed())
+      wisdom += "-mpi" + std::to_string(dist.ranks());
+  }
+  chunk = static_cast<std::size_t>(dist.nx()) * static_cast<std::size_t>(grid.n[1]) *
+          static_cast<std::size_t>(grid.n[2] / 2 + 1);
+#ifdef LAMINA_WITH_MPI
+  if (dist.distributed())
+    chunk = std::max(chunk, static_cast<std::size_t>(F::localSize(grid)));
+#endif
+  chunk += chunk % 2; // keeps every chunk 16-byte aligned in single precision too
+  buffer = F::alloc(3 * chunk);
+  if (!buffer)
+    throw std::bad_alloc();
+  if (threads > 0)
+    F::threads(threads);
+  const unsigned flags = measure ? FFTW_MEASURE : FFTW_ESTIMATE;
+  T* in = PlansOf<T>::real(buffer, chunk, 0);
+  auto* out = PlansOf<T>::modes(buffer, chunk, 0);
+  if (dist.distributed()) {
+#ifdef LAMINA_WITH_MPI
+    // rank 0 reads the wisdom and shares it; plans are made collectively
+    if (dist.rank() == 0)
+      importWisdom<T>(wisdom);
+    F::broadcastWisdom();
+    plans->r2c = F::mpiR2c(grid, in, out, flags);
+    plans->c2r = F::mpiC2r(grid, out, in, flags);
+    F::gatherWisdom();
+    if (measure && dist.rank() == 0)
+      exportWisdom<T>(wisdom);
+#endif
+  } else {
+    importWisdom<T>(wisdom);
+    plans->r2c = F::r2c(grid, in, out, flags);
+    plans->c2r = F::c2r(grid, out, in, flags);
+    if (measure)
+      exportWisdom<T>(wisdom);
+  }
+  LAMINA_CHECK(plans->r2c && plans->c2r, "FFTW could not plan transforms of ", grid.n[0], "x",
+               grid.n[1], "x", grid.n[2]);
+  return plans;
 }
 
-void exportWisdom(const std::string& path) {
-  if (path.empty())
-    return;
-  try {
-    std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-    std::unique_ptr<char, void (*)(void*)> text(fftw_export_wisdom_to_string(), std::free);
-    if (text)
-      core::writeFileAtomically(path, text.get());
-  } catch (const std::exception&) {
-  }
-}
 } // namespace
 
-VectorFft::VectorFft(const Grid& grid, int threads, bool measure) : grid_(grid) {
+VectorFft::VectorFft(const Grid& grid, const Distribution& dist, int threads, bool measure,
+                     Precision precision)
+    : grid_(grid), dist_(dist), precision_(precision) {
   std::lock_guard<std::mutex> lock(plannerMutex());
-  static const bool threads_ok = fftw_init_threads() != 0;
-  const std::string wisdom = measure ? wisdomPath() : std::string();
-  importWisdom(wisdom);
-  if (threads_ok && threads > 0)
-    fftw_plan_with_nthreads(threads);
-  const std::size_t N = grid.size(), Nc = grid.complexSize();
-  work_ = fftw_alloc_complex(3 * Nc);
-  AlignedBuffer real(3 * N);
-  if (!work_)
-    throw std::bad_alloc();
-  const int n[3] = {grid.n[0], grid.n[1], grid.n[2]};
-  const unsigned flags = measure ? FFTW_MEASURE : FFTW_ESTIMATE;
-  r2c_ = fftw_plan_many_dft_r2c(3, n, 3, real.data(), nullptr, 1, static_cast<int>(N), work_,
-                                nullptr, 1, static_cast<int>(Nc), flags);
-  c2r_ = fftw_plan_many_dft_c2r(3, n, 3, work_, nullptr, 1, static_cast<int>(Nc), real.data(),
-                                nullptr, 1, static_cast<int>(N), flags);
-  LAMINA_CHECK(r2c_ && c2r_, "FFTW could not plan transforms of ", n[0], "x", n[1], "x", n[2]);
-  if (measure)
-    exportWisdom(wisdom);
+  const int nthreads = initFftwThreads() ? threads : 0;
+  if (precision == Precision::Single)
+    plans_ = makePlans<float>(grid, dist, nthreads, measure, buffer_, chunk_);
+  else
+    plans_ = makePlans<double>(grid, dist, nthreads, measure, buffer_, chunk_);
 }
 
 VectorFft::~VectorFft() {
   std::lock_guard<std::mutex> lock(plannerMutex());
-  if (r2c_)
-    fftw_destroy_plan(r2c_);
-  if (c2r_)
-    fftw_destroy_plan(c2r_);
-  fftw_free(work_);
+  plans_.reset();
+  if (precision_ == Precision::Single)
+    Fftw<float>::free(buffer_);
+  else
+    Fftw<double>::free(buffer_);
 }
 
-void VectorFft::forward(const double* in, fftw_complex* out) const {
-  // the plan preserves its input (out-of-place r2c): the cast is safe
-  fftw_execute_dft_r2c(r2c_, const_cast<double*>(in), out);
+template <>
+double* VectorFft::spectrum<double>() const {
+  LAMINA_CHECK(precision_ == Precision::Double, "spectrum<double> of a single-precision FFT");
+  return static_cast<double*>(buffer_);
 }
 
-void VectorFft::backward(fftw_complex* in, double* out) const {
-  fftw_execute_dft_c2r(c2r_, in, out);
+template <>
+float* VectorFft::spectrum<float>() const {
+  LAMINA_CHECK(precision_ == Precision::Single, "spectrum<float> of a double-precision FFT");
+  return static_cast<float*>(buffer_);
+}
+
+// Calls f(row, offset) for every real row of the spectrum buffer (row: its
+// n2 values, padded to 2 (n2/2+1); offset: the same row's index in an
+// unpadded component-major local field), in parallel.
+template <class F>
+void VectorFft::eachRow(F&& f) {
+  const int n1 = grid_.n[1], n2 = grid_.n[2];
+  const std::size_t rows = static_cast<std::size_t>(dist_.nx()) * n1;
+  const std::size_t L = rows * n2, padded = 2 * static_cast<std::size_t>(n2 / 2 + 1);
+  auto run = [&](auto* buf) {
+#pragma omp parallel for schedule(static) collapse(2)
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t row = 0; row < rows; ++row)
+        f(buf + 2 * c * chunk_ + row * padded, c * L + row * n2);
+  };
+  if (precision_ == Precision::Single)
+    run(spectrum<float>());
+  else
+    run(spectrum<double>());
+}
+
+void VectorFft::forward(const double* r) {
+  const int n2 = grid_.n[2];
+  eachRow([&](auto* dst, std::size_t off) {
+    using T = std::remove_pointer_t<decltype(dst)>;
+    for (int k = 0; k < n2; ++k)
+      dst[k] = static_cast<T>(r[off + k]);
+  });
+  plans_->forward(buffer_, chunk_);
+}
+
+void VectorFft::forwardUpdate(double* r, double alpha, const double* w, double* x,
+                              const double* p) {
+  const int n2 = grid_.n[2];
+  eachRow([&](auto* dst, std::size_t off) {
+    using T = std::remove_pointer_t<decltype(dst)>;
+    double* ro = r + off;
+    const double* wo = w + off;
+    for (int k = 0; k < n2; ++k) {
+      const double v = ro[k] - alpha * wo[k];
+      ro[k] = v;
+      dst[k] = static_cast<T>(v);
+    }
+    if (x) {
+      double* xo = x + off;
+      const double* po = p + off;
+      for (int k = 0; k < n2; ++k)
+        xo[k] += alpha * po[k];
+    }
+  });
+  plans_->forward(buffer_, chunk_);
+}
+
+void VectorFft::backward(double* z) {
+  const int n2 = grid_.n[2];
+  plans_->backward(buffer_, chunk_);
+  eachRow([&](auto* src, std::size_t off) {
+    for (int k = 0; k < n2; ++k)
+      z[off + k] = static_cast<double>(src[k]);
+  });
+}
+
+void VectorFft::backwardUpdate(double* p, double beta) {
+  const int n2 = grid_.n[2];
+  plans_->backward(buffer_, chunk_);
+  eachRow([&](auto* src, std::size_t off) {
+    double* po = p + off;
+    for (int k = 0; k < n2; ++k)
+      po[k] = static_cast<double>(src[k]) + beta * po[k];
+  });
 }
 
 } // namespace lamina::homogenize

@@ -4,8 +4,9 @@
 
 namespace lamina::homogenize {
 
-GreenOperator::GreenOperator(const Grid& grid, double lambda0, double mu0, const VectorFft& fft)
-    : grid_(grid), lambda0_(lambda0), mu0_(mu0), fft_(fft) {
+GreenOperator::GreenOperator(const Grid& grid, double lambda0, double mu0, VectorFft& fft,
+                             const Distribution& dist)
+    : grid_(grid), lambda0_(lambda0), mu0_(mu0), fft_(fft), dist_(dist) {
   for (int d = 0; d < 3; ++d) {
     const int n = grid.n[static_cast<std::size_t>(d)];
     const int m = (d == 2) ? n / 2 + 1 : n; // r2c keeps half the last axis
@@ -17,11 +18,13 @@ GreenOperator::GreenOperator(const Grid& grid, double lambda0, double mu0, const
   }
 }
 
-double GreenOperator::apply(const double* r, double* z) const {
-  fftw_complex* w = fft_.work();
-  fft_.forward(r, w);
-  const int n0 = grid_.n[0], n1 = grid_.n[1], m2 = grid_.n[2] / 2 + 1;
-  const std::size_t Nc = grid_.complexSize();
+// The closed-form 3x3 solve on this rank's x-planes of the spectrum (type
+// T: the transforms' precision; the factors and r^T z stay in double).
+template <class T>
+double GreenOperator::solveModes() const {
+  T* w = fft_.spectrum<T>();
+  const std::size_t chunk2 = 2 * fft_.chunkSize(); // T values between components
+  const int nx = dist_.nx(), x0 = dist_.x0(), n1 = grid_.n[1], m2 = grid_.n[2] / 2 + 1;
   const double norm = 1.0 / static_cast<double>(grid_.size()); // FFTW is unnormalized
   const double beta = (lambda0_ + mu0_) / (lambda0_ + 2 * mu0_);
   const double norm_mu = norm / mu0_;
@@ -32,10 +35,10 @@ double GreenOperator::apply(const double* r, double* z) const {
   const int n2 = grid_.n[2];
   double rz = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(+ : rz)
-  for (int i = 0; i < n0; ++i)
+  for (int il = 0; il < nx; ++il)
     for (int j = 0; j < n1; ++j) {
-      const double s0 = sin_[0][static_cast<std::size_t>(i)],
-                   c0 = cos_[0][static_cast<std::size_t>(i)];
+      const std::size_t i = static_cast<std::size_t>(x0 + il);
+      const double s0 = sin_[0][i], c0 = cos_[0][i];
       const double s1 = sin_[1][static_cast<std::size_t>(j)],
                    c1 = cos_[1][static_cast<std::size_t>(j)];
       // q = (A c2, B c2, Cz s2): the (i, j) factors hoisted out of the k loop
@@ -43,14 +46,14 @@ double GreenOperator::apply(const double* r, double* z) const {
       for (int k = 0; k < m2; ++k) {
         const double s2 = sin_[2][static_cast<std::size_t>(k)],
                      c2 = cos_[2][static_cast<std::size_t>(k)];
-        const std::size_t idx = (static_cast<std::size_t>(i) * n1 + j) * m2 + k;
+        const std::size_t idx = 2 * ((static_cast<std::size_t>(il) * n1 + j) * m2 + k);
+        T* a = w + idx;
+        T* b = w + chunk2 + idx;
+        T* c = w + 2 * chunk2 + idx;
         const double q0 = A * c2, q1 = B * c2, q2 = Cz * s2;
         const double qq = q0 * q0 + q1 * q1 + q2 * q2;
-        fftw_complex* a = w + idx;
-        fftw_complex* b = w + Nc + idx;
-        fftw_complex* c = w + 2 * Nc + idx;
         if (qq <= zero2) {
-          (*a)[0] = (*a)[1] = (*b)[0] = (*b)[1] = (*c)[0] = (*c)[1] = 0;
+          a[0] = a[1] = b[0] = b[1] = c[0] = c[1] = 0;
           continue;
         }
         const double rq = 1.0 / qq; // one division per mode
@@ -60,18 +63,37 @@ double GreenOperator::apply(const double* r, double* z) const {
         const double weight = (k == 0 || 2 * k == n2) ? 1.0 : 2.0;
         double rz_here = 0;
         for (int part = 0; part < 2; ++part) {
-          const double ra = (*a)[part], rb = (*b)[part], rc = (*c)[part];
+          const double ra = a[part], rb = b[part], rc = c[part];
           const double dot = bq * (q0 * ra + q1 * rb + q2 * rc);
-          (*a)[part] = inv * (ra - dot * q0);
-          (*b)[part] = inv * (rb - dot * q1);
-          (*c)[part] = inv * (rc - dot * q2);
-          rz_here += ra * (*a)[part] + rb * (*b)[part] + rc * (*c)[part];
+          const double za = inv * (ra - dot * q0), zb = inv * (rb - dot * q1),
+                       zc = inv * (rc - dot * q2);
+          a[part] = static_cast<T>(za);
+          b[part] = static_cast<T>(zb);
+          c[part] = static_cast<T>(zc);
+          rz_here += ra * za + rb * zb + rc * zc;
         }
         rz += weight * rz_here;
       }
     }
-  fft_.backward(w, z);
   return rz;
+}
+
+double GreenOperator::apply(const double* r, double* z) const {
+  fft_.forward(r);
+  double rz = fft_.precision() == Precision::Single ? solveModes<float>() : solveModes<double>();
+  fft_.backward(z);
+  dist_.sum(&rz, 1);
+  return rz;
+}
+
+double GreenOperator::step(double* r, double alpha, const double* w, double* x, double* p,
+                           double rz) const {
+  fft_.forwardUpdate(r, alpha, w, x, p);
+  double rz_new =
+      fft_.precision() == Precision::Single ? solveModes<float>() : solveModes<double>();
+  dist_.sum(&rz_new, 1);
+  fft_.backwardUpdate(p, rz_new / rz);
+  return rz_new;
 }
 
 } // namespace lamina::homogenize

@@ -12,6 +12,10 @@
 /// inverted in closed form:
 ///   K0^-1 = (I - (lambda0 + mu0)/(lambda0 + 2 mu0) q q^T/|q|^2) / (mu0 |q|^2).
 /// Modes with q = 0 (the mean and the hourglass modes) are mapped to zero.
+///
+/// In single precision the transforms and the mode solve run in float: a
+/// preconditioner perturbed by ~1e-7 relative, which conjugate gradients
+/// tolerate down to residuals far below the tolerances it is used for.
 
 #include "homogenize/fft.hpp"
 
@@ -23,16 +27,27 @@ namespace lamina::homogenize {
 class GreenOperator {
 public:
   /// @param grid the grid; @param lambda0, mu0 reference Lame constants (Pa);
-  /// @param fft plans for @p grid (must outlive this object)
-  GreenOperator(const Grid& grid, double lambda0, double mu0, const VectorFft& fft);
-  /// z = K0^+ r (3 x N each; r is kept, z may not alias r).
-  /// @return r^T z, summed in Fourier space (Parseval) during the solve
+  /// @param fft plans for @p grid (must outlive this object; its
+  /// distribution is the one of r and z)
+  /// @param dist the distribution of the fields (sums of r^T z over ranks)
+  GreenOperator(const Grid& grid, double lambda0, double mu0, VectorFft& fft,
+                const Distribution& dist);
+  /// z = K0^+ r (3 local slabs each; r is kept, z may not alias r).
+  /// @return r^T z over all ranks, summed in Fourier space (Parseval)
   double apply(const double* r, double* z) const;
+  /// One fused conjugate-gradient step around the preconditioner:
+  /// r -= alpha w (x += alpha p if @p x is not null), z = K0^+ r, and
+  /// p = z + (r^T z / rz) p, in two passes over the fields besides the FFTs.
+  /// @return the new r^T z over all ranks (NaN/Inf is left to the caller)
+  double step(double* r, double alpha, const double* w, double* x, double* p, double rz) const;
 
 private:
+  template <class T>
+  double solveModes() const;
   Grid grid_;
   double lambda0_, mu0_;
-  const VectorFft& fft_;
+  VectorFft& fft_;
+  const Distribution& dist_;
   std::vector<double> sin_[3], cos_[3]; // sin(xi/2), cos(xi/2) per axis
 };
 

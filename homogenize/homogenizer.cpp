@@ -48,22 +48,27 @@ void referenceMedium(const std::vector<materials::Stiffness>& C, double& lambda0
   lambda0 = K0 - 2.0 * mu0 / 3.0;
 }
 
+Precision autoPrecision(double tol) {
+  return tol >= 1e-6 ? Precision::Single : Precision::Double;
+}
+
 namespace {
 
 /// The pieces of one solve, set up once and reused by the six load cases.
 class CgSolver {
 public:
-  CgSolver(const Grid& grid, const CellOperator& A, const GreenOperator& M, double ref_scale)
-      : n_(3 * grid.size()), A_(A), M_(M), ref_(ref_scale), r_(n_), p_(n_), w_(n_) {}
+  CgSolver(std::size_t local, const CellOperator& A, const GreenOperator& M,
+           const Distribution& dist, double ref_scale)
+      : n_(3 * local), A_(A), M_(M), dist_(dist), ref_(ref_scale), r_(n_), p_(n_), w_(n_) {}
 
-  /// Solves load case E; returns the average stress in @p sigma.
-  /// The displacement itself is formed only if @p x is not null: the
-  /// average stress is linear in it, <C (E + D x)> = <C E> + sum_k alpha_k
-  /// <C D p_k>, and <C D p_k> comes out of the stress pass of A p_k. This
-  /// saves a vector and a pass when x is not wanted.
+  /// Solves load case E; returns the average stress in @p sigma and, if @p x
+  /// is not null, the displacement (3 x local) in @p x.
+  /// The average stress is linear in the displacement, <C (E + D x)> = <C E>
+  /// + sum_k alpha_k <C D p_k>, and <C D p_k> comes out of the stress pass of
+  /// A p_k, so x is formed only when asked for.
   LoadCaseResult solve(const std::array<double, 6>& E, double energy_E, const Options& opt,
                        const std::function<void(int, double)>& monitor,
-                       std::array<double, 6>& sigma, double* x = nullptr) {
+                       std::array<double, 6>& sigma, double* x) {
     double* r = r_.data();
     double* p = p_.data();
     double* w = w_.data();
@@ -71,10 +76,11 @@ public:
     // r = b = -D^T C E (x = 0); sigma = <C E>
     A_.apply(nullptr, E, r, &sigma);
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t i = 0; i < n; ++i) {
       r[i] = -r[i];
-    if (x)
-      std::fill(x, x + n, 0.0);
+      if (x)
+        x[i] = 0;
+    }
     double rz = M_.apply(r, p); // p0 = z0 = M r0, rz = r0^T z0
     const double scale = ref_ * energy_E;
     LoadCaseResult res;
@@ -100,27 +106,12 @@ public:
                               "): NaN/Inf or an indefinite phase stiffness");
       for (std::size_t a = 0; a < 6; ++a)
         sigma[a] += alpha * sigma_p[a];
-#pragma omp parallel for schedule(dynamic, 32768)
-      for (std::size_t i = 0; i < n; ++i)
-        r[i] -= alpha * w[i];
-      if (x) {
-#pragma omp parallel for schedule(dynamic, 32768)
-        for (std::size_t i = 0; i < n; ++i)
-          x[i] += alpha * p[i];
-      }
-      auto t2 = Clock::now();
-      time_V += std::chrono::duration<double>(t2 - t1).count();
-      const double rz_new = M_.apply(r, w); // w now holds z = M r
-      auto t3 = Clock::now();
-      time_M += std::chrono::duration<double>(t3 - t2).count();
+      // r -= alpha w, x += alpha p, z = M r, p = z + beta p: fused passes
+      const double rz_new = M_.step(r, alpha, w, x, p, rz);
+      time_M += std::chrono::duration<double>(Clock::now() - t1).count();
       if (!std::isfinite(rz_new))
         throw DivergenceError("residual is NaN/Inf in conjugate gradients");
-      const double beta = rz_new / rz;
       rz = rz_new;
-#pragma omp parallel for schedule(dynamic, 32768)
-      for (std::size_t i = 0; i < n; ++i)
-        p[i] = w[i] + beta * p[i];
-      time_V += std::chrono::duration<double>(Clock::now() - t3).count();
       ++res.iterations;
       res.residual = std::sqrt(std::max(rz, 0.0) / scale);
       if (monitor)
@@ -129,14 +120,33 @@ public:
     return res;
   }
 
-  /// Seconds spent in the operator, the preconditioner and vector updates.
-  double time_A = 0, time_M = 0, time_V = 0;
+  /// dots[j] = x_j^T r (r: the last solve's final residual), j < count, summed
+  /// over ranks, in one pass over r.
+  void residualDots(const std::vector<AlignedBuffer>& x, int count, double* dots) const {
+    const double* r = r_.data();
+    const double* xs[6] = {};
+    for (int j = 0; j < count; ++j)
+      xs[j] = x[static_cast<std::size_t>(j)].data();
+    double d[6] = {0, 0, 0, 0, 0, 0};
+#pragma omp parallel for schedule(static) reduction(+ : d[:6])
+    for (std::size_t i = 0; i < n_; ++i)
+      for (int j = 0; j < count; ++j)
+        d[j] += xs[j][i] * r[i];
+    for (int j = 0; j < count; ++j)
+      dots[j] = d[j];
+    dist_.sum(dots, count);
+  }
+
+  /// Seconds spent in the operator and in the preconditioner with the
+  /// vector updates fused into its passes.
+  double time_A = 0, time_M = 0;
 
 private:
   using Clock = std::chrono::steady_clock;
   std::size_t n_;
   const CellOperator& A_;
   const GreenOperator& M_;
+  const Distribution& dist_;
   double ref_;
   AlignedBuffer r_, p_, w_;
 };
@@ -146,10 +156,16 @@ private:
 Homogenizer::Homogenizer(const Grid& grid, std::vector<std::int32_t> phase,
                          std::vector<materials::Stiffness> C, std::vector<double> density,
                          Options options)
-    : grid_(grid), phase_(std::move(phase)), C_(std::move(C)), density_(std::move(density)),
-      opt_(options) {
+    : Homogenizer(grid, Distribution::serial(grid), std::move(phase), std::move(C),
+                  std::move(density), options) {}
+
+Homogenizer::Homogenizer(const Grid& grid, const Distribution& dist,
+                         std::vector<std::int32_t> phase, std::vector<materials::Stiffness> C,
+                         std::vector<double> density, Options options)
+    : grid_(grid), dist_(dist), phase_(std::move(phase)), C_(std::move(C)),
+      density_(std::move(density)), opt_(options) {
   LAMINA_CHECK(C_.size() == density_.size(), "one density per phase is required");
-  LAMINA_CHECK(phase_.size() == grid_.size(), "phase map size does not match the grid");
+  LAMINA_CHECK(phase_.size() == dist_.localSize(), "phase map size does not match the grid");
   LAMINA_CHECK(opt_.tol > 0, "tolerance must be positive");
   for (std::size_t p = 0; p < C_.size(); ++p)
     C_[p].validate("phase " + std::to_string(p));
@@ -178,6 +194,7 @@ Result Homogenizer::run() {
                  " has no stiffness");
     ++count[static_cast<std::size_t>(p)];
   }
+  dist_.sum(count.data(), static_cast<int>(count.size()));
   std::vector<materials::Stiffness> present;
   for (std::size_t p = 0; p < C_.size(); ++p) {
     const double f = static_cast<double>(count[p]) / static_cast<double>(res.voxels);
@@ -191,17 +208,23 @@ Result Homogenizer::run() {
   // FFTW_MEASURE halves the transform time but plans for seconds: worth it
   // above 64^3 (and free once its wisdom is cached on disk)
   const bool measure = opt_.measure > 0 || (opt_.measure < 0 && grid_.size() > (1u << 18));
-  const VectorFft fft(grid_, threads, measure);
-  const CellOperator A(grid_, phase_, C_);
-  const GreenOperator M(grid_, res.lambda0, res.mu0, fft);
-  CgSolver cg(grid_, A, M, static_cast<double>(res.voxels));
-  AlignedBuffer x(sink_ ? 3 * grid_.size() : 0);
+  res.precision = opt_.precision ? *opt_.precision : autoPrecision(opt_.tol);
+  res.estimate = opt_.estimate;
+  VectorFft fft(grid_, dist_, threads, measure, res.precision);
+  const CellOperator A(grid_, phase_, C_, dist_);
+  const GreenOperator M(grid_, res.lambda0, res.mu0, fft, dist_);
+  CgSolver cg(dist_.localSize(), A, M, dist_, static_cast<double>(res.voxels));
+  // displacements: all six for the energy estimate, one for a sink
+  const bool energy_form = opt_.estimate == Estimate::Energy;
+  std::vector<AlignedBuffer> x;
+  for (int k = 0; k < (energy_form ? 6 : sink_ ? 1 : 0); ++k)
+    x.emplace_back(3 * dist_.localSize());
   const double setup_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // solve: six unit strains (lamina order, engineering shear) -> six columns
   core::ProgressLine progress("homogenize", 6, opt_.quiet);
-  materials::Matrix6 C = materials::Matrix6::Zero();
+  materials::Matrix6 C = materials::Matrix6::Zero(), C_energy = materials::Matrix6::Zero();
   for (int k = 0; k < 6; ++k) {
     std::array<double, 6> E{0, 0, 0, 0, 0, 0}, sigma{};
     E[static_cast<std::size_t>(k)] = 1.0;
@@ -216,8 +239,8 @@ Result Homogenizer::run() {
       }
     };
     try {
-      res.cases[static_cast<std::size_t>(k)] =
-          cg.solve(E, energy, opt_, monitor, sigma, sink_ ? x.data() : nullptr);
+      double* xk = x.empty() ? nullptr : x[energy_form ? static_cast<std::size_t>(k) : 0].data();
+      res.cases[static_cast<std::size_t>(k)] = cg.solve(E, energy, opt_, monitor, sigma, xk);
     } catch (const DivergenceError& e) {
       throw DivergenceError("load case " + std::to_string(k + 1) + ": " + e.message());
     } catch (const Error& e) {
@@ -225,20 +248,26 @@ Result Homogenizer::run() {
     }
     for (int a = 0; a < 6; ++a)
       C(a, k) = sigma[static_cast<std::size_t>(a)];
+    if (energy_form) { // C_jk = <sigma_k>_j - x_j^T r_k / N for the cases j <= k
+      double dots[6];
+      cg.residualDots(x, k + 1, dots);
+      for (int j = 0; j <= k; ++j)
+        C_energy(j, k) = C_energy(k, j) = C(j, k) - dots[j] / static_cast<double>(res.voxels);
+    }
     if (sink_)
-      sink_(k, x.data());
+      sink_(k, x[energy_form ? static_cast<std::size_t>(k) : 0].data());
   }
   progress.finish();
-  if (std::getenv("LAMINA_HOMOGENIZE_PROFILE"))
+  if (std::getenv("LAMINA_HOMOGENIZE_PROFILE") && dist_.rank() == 0)
     std::fprintf(stderr,
-                 "homogenize profile: setup %.3f s, operator %.3f s, preconditioner %.3f s, vector "
+                 "homogenize profile: setup %.3f s, operator %.3f s, preconditioner and vector "
                  "updates %.3f s\n",
-                 setup_s, cg.time_A, cg.time_M, cg.time_V);
+                 setup_s, cg.time_A, cg.time_M);
 
   // output: raw and symmetrized C, diagnostics
   res.C_raw = materials::Stiffness(C);
   res.asymmetry = res.C_raw.asymmetry();
-  res.C = res.C_raw.symmetrized();
+  res.C = energy_form ? materials::Stiffness(C_energy) : res.C_raw.symmetrized();
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j)
       LAMINA_CHECK(std::isfinite(res.C(i, j)), "effective stiffness is not finite");

@@ -14,7 +14,17 @@
 /// Convergence criterion: sqrt(r^T K0^-1 r / (N E_k^T C0 E_k)) <= tol, i.e.
 /// the error of the strain field in the reference energy norm relative to the
 /// applied strain.
+///
+/// C from the six solutions (Estimate): by default the energy (Hill-Mandel)
+/// form C_jk = <eps_j : C : eps_k>, whose error is e_j^T A e_k / N, quadratic
+/// in the displacement errors e (the average stress <sigma_k>_j is off by
+/// u_j^T A e_k / N, linear). It is evaluated without another pass over the
+/// grid as C_jk = <sigma_k>_j - x_j^T r_k / N with the final residual r_k =
+/// b_k - A x_k of case k, which needs the displacement x_j of the earlier
+/// cases (six fields kept).
 
+#include "homogenize/distribution.hpp"
+#include "homogenize/fft.hpp"
 #include "homogenize/grid.hpp"
 #include "materials/stiffness.hpp"
 #include "materials/symmetry.hpp"
@@ -22,19 +32,35 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace lamina::homogenize {
 
+/// How C is formed from the six load cases.
+enum class Estimate {
+  Energy, ///< C_jk = <eps_j : C : eps_k>: error quadratic in the solver's (keeps 6 fields)
+  Stress  ///< column k = <sigma_k>: error linear in the solver's, no extra memory
+};
+
 /// Solver settings.
 struct Options {
-  double tol = 1e-5;          ///< relative residual of each load case (1e-5: C to ~5 digits)
+  double tol = 1e-5;          ///< relative residual of each load case
   int max_iterations = 10000; ///< per load case; exceeding it is an error
   int threads = 0;            ///< OpenMP and FFTW threads (0: auto, 1 below 64k voxels)
   int measure = -1;           ///< FFTW_MEASURE planning: 1 yes, 0 no, -1 auto (above 64^3 voxels)
   bool quiet = true;          ///< no progress line
+  Estimate estimate = Estimate::Energy; ///< how C is formed
+  /// FFT precision of the preconditioner; unset: single when tol >= 1e-6
+  /// (autoPrecision), else double
+  std::optional<Precision> precision;
 };
+
+/// The precision Options::precision leaves unset means for @p tol: single
+/// precision transforms down to tol 1e-6 (their rounding, ~1e-7 relative,
+/// stays two decades below the residual CG has to reach).
+Precision autoPrecision(double tol);
 
 /// Outcome of one load case.
 struct LoadCaseResult {
@@ -44,17 +70,21 @@ struct LoadCaseResult {
 
 /// Everything a homogenization produces.
 struct Result {
-  materials::Stiffness C_raw;          ///< columns from the six load cases (Pa, lamina order)
-  materials::Stiffness C;              ///< symmetrized C_raw
-  double asymmetry = 0;                ///< max |C_raw - C_raw^T| / max |C_raw|
-  double density = 0;                  ///< volume average (kg/m^3)
-  std::array<LoadCaseResult, 6> cases; ///< per load case
+  materials::Stiffness C_raw; ///< average stresses of the six load cases (columns)
+  /// Effective C (Pa, lamina order): the energy form (Estimate::Energy,
+  /// symmetric by construction) or the symmetrized C_raw (Estimate::Stress)
+  materials::Stiffness C;
+  double asymmetry = 0; ///< max |C_raw - C_raw^T| / max |C_raw| (a solver error gauge)
+  double density = 0;   ///< volume average (kg/m^3)
+  std::array<LoadCaseResult, 6> cases;                                   ///< per load case
   materials::Symmetry symmetry{materials::SymmetryClass::Triclinic, -1}; ///< class of C
-  double symmetry_tol = 0;            ///< relative tolerance used to classify
-  double lambda0 = 0, mu0 = 0;        ///< reference medium (Pa)
-  std::size_t voxels = 0;             ///< number of voxels
-  std::vector<double> voxel_fraction; ///< per phase
-  double wall_s = 0;                  ///< wall time of run() (s)
+  double symmetry_tol = 0;                 ///< relative tolerance used to classify
+  double lambda0 = 0, mu0 = 0;             ///< reference medium (Pa)
+  std::size_t voxels = 0;                  ///< number of voxels
+  std::vector<double> voxel_fraction;      ///< per phase
+  double wall_s = 0;                       ///< wall time of run() (s)
+  Estimate estimate = Estimate::Energy;    ///< how C was formed
+  Precision precision = Precision::Double; ///< FFT precision used
   /// @return the largest final residual of the six cases
   double maxResidual() const;
   /// @return the iterations of the six cases
@@ -77,6 +107,10 @@ public:
   /// @param options solver settings
   Homogenizer(const Grid& grid, std::vector<std::int32_t> phase,
               std::vector<materials::Stiffness> C, std::vector<double> density, Options options);
+  /// Distributed: @p phase is this rank's slab of @p dist (every rank calls
+  /// run(); all get the same Result).
+  Homogenizer(const Grid& grid, const Distribution& dist, std::vector<std::int32_t> phase,
+              std::vector<materials::Stiffness> C, std::vector<double> density, Options options);
 
   /// Called after each CG iteration: load case (0-5), iteration, residual.
   using Monitor = std::function<void(int, int, double)>;
@@ -85,8 +119,9 @@ public:
 
   /// Called after each load case k (0-5) with its converged nodal
   /// displacement fluctuation u (3 x N, component-major, the units of the
-  /// grid spacing per unit strain). Set, the solver forms u (one more vector
-  /// and one more update per iteration); unset, it never does.
+  /// grid spacing per unit strain; distributed: this rank's slab, 3 x
+  /// dist.localSize()). The energy estimate forms u anyway; with the stress
+  /// estimate a sink costs one more vector and update per iteration.
   using DisplacementSink = std::function<void(int, const double*)>;
   /// Installs @p s (see DisplacementSink).
   void setDisplacementSink(DisplacementSink s) { sink_ = std::move(s); }
@@ -98,6 +133,7 @@ public:
 
 private:
   Grid grid_;
+  Distribution dist_;
   std::vector<std::int32_t> phase_;
   std::vector<materials::Stiffness> C_;
   std::vector<double> density_;

@@ -96,18 +96,54 @@ materials::Material makeEntry(const std::string& name, const micro::CellSpec& sp
 }
 
 EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& cell,
-                           const std::string& name, double J, const Options& options) {
+                           const std::string& name, double J, const Options& options,
+                           const Distribution* dist) {
   EntryResult e{name, J, {}, std::nullopt};
   const Grid grid = gridOf(cell);
+  const Distribution serial = Distribution::serial(grid);
+  const Distribution& d = dist ? *dist : serial;
   const std::vector<double> density = spec.densities();
-  // composite voxels (if any) enter as one laminate stiffness each
-  micro::VoxelMaterials vm = micro::voxelMaterials(cell, spec.stiffnessesAt(J), density);
-  Homogenizer h(grid, std::move(vm.phase), std::move(vm.C), std::move(vm.density), options);
-  std::optional<DispersionAccumulator> acc;
-  if (spec.physical_size) {
-    acc.emplace(grid, cell.phase, density);
-    h.setDisplacementSink([&](int k, const double* u) { acc->addLoadCase(k, u); });
+  // composite voxels (if any) enter as one laminate stiffness each; rank 0
+  // builds them and every rank gets the stiffness list and its slab
+  micro::VoxelMaterials vm;
+  if (d.rank() == 0)
+    vm = micro::voxelMaterials(cell, spec.stiffnessesAt(J), density);
+  if (d.distributed()) {
+    std::vector<double> packed;
+    for (std::size_t m = 0; m < vm.C.size(); ++m) {
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j)
+          packed.push_back(vm.C[m](i, j));
+      packed.push_back(vm.density[m]);
+    }
+    d.broadcast(packed);
+    vm.C.clear();
+    vm.density.clear();
+    for (std::size_t at = 0; at + 37 <= packed.size(); at += 37) {
+      materials::Matrix6 c;
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j)
+          c(i, j) = packed[at + 6 * static_cast<std::size_t>(i) + static_cast<std::size_t>(j)];
+      vm.C.emplace_back(c);
+      vm.density.push_back(packed[at + 36]);
+    }
+    vm.phase = d.scatter(vm.phase);
   }
+  Homogenizer h(grid, d, std::move(vm.phase), std::move(vm.C), std::move(vm.density), options);
+  // the dispersion tensor is accumulated on rank 0 from the gathered fields
+  std::optional<DispersionAccumulator> acc;
+  if (spec.physical_size && d.rank() == 0)
+    acc.emplace(grid, cell.phase, density);
+  if (spec.physical_size)
+    h.setDisplacementSink([&](int k, const double* u) {
+      if (!d.distributed()) {
+        acc->addLoadCase(k, u);
+        return;
+      }
+      const std::vector<double> global = d.gather(u, 3);
+      if (acc)
+        acc->addLoadCase(k, global.data());
+    });
   e.result = h.run();
   e.result.voxel_fraction = cell.voxel_fraction; // per phase, cut voxels split by fraction
   if (acc)
@@ -118,7 +154,11 @@ EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& c
 std::vector<EntryResult>
 homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
                       const std::string& base, const Options& options, materials::Library& library,
-                      bool overwrite, const std::function<void(const EntryResult&)>& report) {
+                      bool overwrite, const std::function<void(const EntryResult&)>& report,
+                      const Distribution* dist) {
+  const Grid grid = gridOf(cell);
+  const Distribution serial = Distribution::serial(grid);
+  const Distribution& d = dist ? *dist : serial;
   const std::vector<double> states = spec.sweepStates();
   bool sweep = false;
   for (const auto& ph : spec.phases)
@@ -131,7 +171,11 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
   }
   std::vector<EntryResult> out;
   for (double J : states) {
-    EntryResult e = homogenizeCell(spec, cell, entryName(base, J, sweep), J, options);
+    EntryResult e = homogenizeCell(spec, cell, entryName(base, J, sweep), J, options, &d);
+    if (d.rank() != 0) { // one writer
+      out.push_back(std::move(e));
+      continue;
+    }
     materials::Material m = makeEntry(e.name, spec, cell, e.result, options, J,
                                       e.dispersion ? &*e.dispersion : nullptr);
     // The phase map goes to an HDF5 side file beside the library (DESIGN.md:

@@ -48,16 +48,24 @@ struct EntryResult {
 
 /// Homogenizes @p cell at matrix state @p J; with a physical cell size
 /// (spec.physical_size) also its dispersion tensor from the same solves.
+/// Distributed (@p dist): every rank calls this; rank 0 holds @p cell's
+/// whole map, builds the voxel materials, scatters them and gets the
+/// dispersion.
 EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& cell,
-                           const std::string& name, double J, const Options& options);
+                           const std::string& name, double J, const Options& options,
+                           const Distribution* dist = nullptr);
 
 /// Homogenizes @p cell at every J state of @p spec (entryName rule) and adds
 /// each entry to @p library. Checks all names first: an existing entry is an
 /// error unless @p overwrite. @p report, if set, is called after each entry.
+/// Distributed (@p dist): every rank calls this; rank 0 holds the cell's
+/// whole phase map and scatters it, and alone writes the side files and the
+/// library and calls @p report.
 std::vector<EntryResult>
 homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
                       const std::string& base, const Options& options, materials::Library& library,
-                      bool overwrite, const std::function<void(const EntryResult&)>& report = {});
+                      bool overwrite, const std::function<void(const EntryResult&)>& report = {},
+                      const Distribution* dist = nullptr);
 
 /// The `--json` summary of an entry: name, C (6x6, Pa, lamina order),
 /// density, iterations (6), residual, voxels, volume_fraction (all

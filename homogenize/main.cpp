@@ -3,9 +3,12 @@
 /// [--threads N] [--tol T] [--resolution N]`: effective C and density of a
 /// unit cell into the materials library. With `--path P --rate R --to S`:
 /// the nonlinear cell under that strain-rate history (nonlinear_run.hpp).
+/// Under `mpirun -np N` the linear homogenization runs over N ranks (rank 0
+/// builds the cell, scatters it, prints and writes the library).
 
 #include "core/error.hpp"
 #include "core/memory.hpp"
+#include "homogenize/distribution.hpp"
 #include "homogenize/homogenizer.hpp"
 #include "homogenize/library_entry.hpp"
 #include "homogenize/nonlinear_run.hpp"
@@ -75,10 +78,12 @@ void printHuman(const lamina::homogenize::EntryResult& e, const lamina::micro::U
 } // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"homogenize: effective stiffness and density of a voxel unit cell"};
+  lamina::homogenize::MpiSession mpi(&argc, &argv);
+  CLI::App app{"homogenize: effective stiffness and density of a voxel unit cell "
+               "(mpirun -np N homogenize ... runs it over N MPI ranks)"};
   std::string cell_path, name, library, catalog;
   bool json = false, overwrite = false, quiet = false;
-  std::string plan = "auto";
+  std::string plan = "auto", estimate = "energy", precision = "auto";
   int threads = 0, resolution = 0;
   double tol = 1e-5;
   app.add_option("cell", cell_path, "cell file (TOML)")->required();
@@ -97,6 +102,14 @@ int main(int argc, char** argv) {
                  "FFTW planning: estimate, measure (wisdom cached in ~/.cache/lamina), "
                  "auto (measure above 64^3)")
       ->check(CLI::IsMember({"auto", "estimate", "measure"}));
+  app.add_option("--estimate", estimate,
+                 "C from the six solutions: energy (<eps_j:C:eps_k>, error quadratic in the "
+                 "residual, keeps 6 displacement fields) or stress (<sigma_k>, least memory)")
+      ->check(CLI::IsMember({"energy", "stress"}));
+  app.add_option("--precision", precision,
+                 "FFT precision of the preconditioner: auto (single when tol >= 1e-6), single, "
+                 "double")
+      ->check(CLI::IsMember({"auto", "single", "double"}));
   app.add_flag("--quiet", quiet, "no progress line");
   // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
   std::string path_name, out;
@@ -131,6 +144,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    // every rank parses the same arguments: one prints
+    if (mpi.rank() != 0)
+      return e.get_exit_code() == 0 ? 0 : lamina::kExitUsage;
     return app.exit(e) == 0 ? 0 : lamina::kExitUsage;
   }
   try {
@@ -139,19 +155,42 @@ int main(int argc, char** argv) {
     std::array<int, 3> n = spec.resolution;
     if (resolution > 0)
       n = {resolution, resolution, resolution};
-    // checked before anything large is allocated: about 110 bytes per voxel
-    // (three CG vectors, FFT buffers, phase map; docs/homogenize.md)
+    // checked before anything large is allocated (docs/homogenize.md,
+    // Memory): per voxel 72 bytes of CG vectors, the FFT buffer, the phase
+    // index and with the energy estimate six displacement fields, over the
+    // ranks; rank 0 also holds the whole phase map while it scatters it
     const std::uint64_t voxels = static_cast<std::uint64_t>(n[0]) *
                                  static_cast<std::uint64_t>(n[1]) *
                                  static_cast<std::uint64_t>(n[2]);
-    core::requireMemory(voxels * 110,
+    const bool single =
+        precision == "single" ||
+        (precision == "auto" && homogenize::autoPrecision(tol) == homogenize::Precision::Single);
+    const std::uint64_t per_voxel = 76 + (single ? 12 : 24) + (estimate == "energy" ? 144 : 0);
+    core::requireMemory(voxels * per_voxel / static_cast<std::uint64_t>(mpi.ranks()) +
+                            (mpi.rank() == 0 ? 8 * voxels : 0),
                         "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
                             " x " + std::to_string(n[2]) + " voxels",
                         {cell_path, 0, ""},
                         "run it distributed: mpirun -np N homogenize " + cell_path +
-                            " ... (each rank holds 1/N of the fields)");
-    const micro::UnitCell cell = micro::buildCell(spec, n);
+                            " ... (each rank holds 1/N of the fields), or --estimate stress "
+                            "--precision single (90 bytes per voxel)");
+    // rank 0 builds the phase map; the others learn only its grid
+    micro::UnitCell cell;
+    if (mpi.rank() == 0)
+      cell = micro::buildCell(spec, n);
+    double shape[6] = {static_cast<double>(cell.n[0]),
+                       static_cast<double>(cell.n[1]),
+                       static_cast<double>(cell.n[2]),
+                       cell.size[0],
+                       cell.size[1],
+                       cell.size[2]};
+    mpi.broadcast(shape, sizeof shape);
+    for (int d = 0; d < 3; ++d) {
+      cell.n[static_cast<std::size_t>(d)] = static_cast<int>(shape[d]);
+      cell.size[d] = shape[3 + d];
+    }
     if (!path_name.empty() || !tangent.rates.empty()) {
+      LAMINA_CHECK(mpi.ranks() == 1, "nonlinear runs are serial (no mpirun)");
       path.path = *materials::parseDrivePath(path_name.empty() ? "uniaxial-strain" : path_name);
       homogenize::NonlinearOptions nl;
       nl.tol = tol;
@@ -203,23 +242,31 @@ int main(int argc, char** argv) {
     opt.tol = tol;
     opt.threads = threads;
     opt.measure = plan == "auto" ? -1 : plan == "measure" ? 1 : 0;
-    opt.quiet = quiet;
-    homogenize::homogenizeIntoLibrary(spec, cell, name, opt, lib, overwrite,
-                                      [&](const homogenize::EntryResult& e) {
-                                        if (json)
-                                          std::cout << homogenize::toJson(e).dump() << std::endl;
-                                        else
-                                          printHuman(e, cell, lib.path().string());
-                                      });
+    opt.quiet = quiet || mpi.rank() != 0;
+    opt.estimate =
+        estimate == "stress" ? homogenize::Estimate::Stress : homogenize::Estimate::Energy;
+    if (precision != "auto")
+      opt.precision =
+          precision == "single" ? homogenize::Precision::Single : homogenize::Precision::Double;
+    const homogenize::Distribution dist = homogenize::Distribution::world(homogenize::gridOf(cell));
+    homogenize::homogenizeIntoLibrary(
+        spec, cell, name, opt, lib, overwrite,
+        [&](const homogenize::EntryResult& e) {
+          if (json)
+            std::cout << homogenize::toJson(e).dump() << std::endl;
+          else
+            printHuman(e, cell, lib.path().string());
+        },
+        &dist);
   } catch (const lamina::DivergenceError& e) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());
-    return lamina::kExitDivergence;
+    return mpi.abort(lamina::kExitDivergence);
   } catch (const lamina::Error& e) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());
-    return lamina::kExitUserError;
+    return mpi.abort(lamina::kExitUserError);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());
-    return lamina::kExitUserError;
+    return mpi.abort(lamina::kExitUserError);
   }
   return 0;
 }

@@ -48,6 +48,7 @@ struct NonlinearHomogenizer::Impl {
   std::size_t N;
   int threads;
   FieldOperator D;
+  std::unique_ptr<Distribution> dist;
   std::unique_ptr<VectorFft> fft;
   std::unique_ptr<GreenOperator> green;
   Matrix6 C0;
@@ -109,8 +110,9 @@ struct NonlinearHomogenizer::Impl {
     }
     ThreadsScope scope(threads);
     const bool measure = opt.measure > 0 || (opt.measure < 0 && N > (1u << 18));
-    fft = std::make_unique<VectorFft>(grid, threads, measure);
-    green = std::make_unique<GreenOperator>(grid, lambda0, mu0, *fft);
+    dist = std::make_unique<Distribution>(Distribution::serial(grid));
+    fft = std::make_unique<VectorFft>(grid, *dist, threads, measure, Precision::Double);
+    green = std::make_unique<GreenOperator>(grid, lambda0, mu0, *fft, *dist);
   }
 
   const Matrix6& phaseC(std::size_t v) const { return Cphase[static_cast<std::size_t>(phase[v])]; }

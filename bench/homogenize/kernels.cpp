@@ -1,7 +1,7 @@
 // Times the building blocks of one CG iteration of the homogenizer at N^3:
 // the stiffness operator (A p), the Green preconditioner (3 r2c + 3 c2r
 // FFTs and the closed-form 3x3 solve) and the FFT pair alone.
-// Usage: homogenize_kernels N THREADS [measure]
+// Usage: homogenize_kernels N THREADS [measure|estimate [single|double]]
 #include "homogenize/cell_operator.hpp"
 #include "homogenize/fft.hpp"
 #include "homogenize/green_operator.hpp"
@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   const int N = argc > 1 ? std::atoi(argv[1]) : 128;
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const bool measure = argc > 3 && std::strcmp(argv[3], "measure") == 0;
+  const bool single = argc > 4 && std::strcmp(argv[4], "single") == 0;
   omp_set_num_threads(threads);
   homogenize::Grid g;
   g.n = {N, N, N};
@@ -35,11 +36,13 @@ int main(int argc, char** argv) {
   const std::vector<materials::Stiffness> C{materials::Stiffness::isotropic(156e6, 0.494),
                                             materials::Stiffness::isotropic(890e6, 0.491)};
   auto t0 = std::chrono::steady_clock::now();
-  homogenize::VectorFft fft(g, threads, measure);
+  const auto dist = homogenize::Distribution::serial(g);
+  homogenize::VectorFft fft(g, dist, threads, measure,
+                            single ? homogenize::Precision::Single : homogenize::Precision::Double);
   const double plan_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  homogenize::CellOperator A(g, map, C);
-  homogenize::GreenOperator M(g, 1e9, 1e8, fft);
+  homogenize::CellOperator A(g, map, C, dist);
+  homogenize::GreenOperator M(g, 1e9, 1e8, fft, dist);
   homogenize::AlignedBuffer u(3 * g.size()), f(3 * g.size());
   for (std::size_t i = 0; i < u.size(); ++i)
     u.data()[i] = std::sin(0.001 * static_cast<double>(i));
@@ -63,17 +66,17 @@ int main(int argc, char** argv) {
     std::printf("%-28s %8.2f ms wall (best of %d) %8.2f ms cpu (mean, all threads)\n", what,
                 1e3 * best, reps, 1e3 * (cpu() - c0) / reps);
   };
-  std::printf("N = %d, threads = %d, planning %s: %.2f s\n", N, threads,
-              measure ? "FFTW_MEASURE" : "FFTW_ESTIMATE", plan_s);
+  std::printf("N = %d, threads = %d, planning %s, %s precision: %.2f s\n", N, threads,
+              measure ? "FFTW_MEASURE" : "FFTW_ESTIMATE", single ? "single" : "double", plan_s);
   time("operator A p", [&] { A.apply(u.data(), E, f.data(), nullptr); });
   time("stress pass only", [&] {
     std::array<double, 6> avg{};
     A.apply(u.data(), E, nullptr, &avg);
   });
   time("preconditioner M r", [&] { M.apply(u.data(), f.data()); });
-  time("3 x (r2c + c2r)", [&] {
-    fft.forward(u.data(), fft.work());
-    fft.backward(fft.work(), f.data());
+  time("3 x (r2c + c2r) + copies", [&] {
+    fft.forward(u.data());
+    fft.backward(f.data());
   });
   return 0;
 }
