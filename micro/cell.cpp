@@ -138,28 +138,28 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
     const auto c = t.getDoubleArray("lattice");
     if (c.size() != 3)
       t.fail("lattice", "must give 3 counts [n1, n2, n3]");
+    double copies = 1;
     for (int i = 0; i < 3; ++i) {
-      if (!(c[static_cast<std::size_t>(i)] >= 1) ||
-          c[static_cast<std::size_t>(i)] != std::floor(c[static_cast<std::size_t>(i)]))
+      const double ci = c[static_cast<std::size_t>(i)];
+      if (!(ci >= 1) || ci != std::floor(ci))
         t.fail("lattice", "counts must be positive integers");
-      g.lattice[static_cast<std::size_t>(i)] = static_cast<int>(c[static_cast<std::size_t>(i)]);
+      copies *= ci;
+      if (copies > static_cast<double>(kMaxInclusions))
+        t.fail("lattice", "at most " + std::to_string(kMaxInclusions) +
+                              " inclusions per cell (placement tests every pair)");
+      g.lattice[static_cast<std::size_t>(i)] = static_cast<int>(ci);
     }
   } else if (placement == "random") {
     g.placement = Placement::Random;
     g.seed = static_cast<std::uint64_t>(t.getInt("seed", 1));
-    g.max_attempts = static_cast<int>(t.getInt("max_attempts", 200000));
-    if (g.max_attempts <= 0)
-      t.fail("max_attempts", "must be positive");
+    g.max_attempts = static_cast<int>(t.getIntIn("max_attempts", 1, kMaxAttempts, 200000));
   } else {
     t.fail("placement", "unknown placement '" + placement + "' (single, lattice, random)");
   }
   if (t.has("count")) {
     if (g.placement != Placement::Random)
       t.fail("count", "count applies to random placement (use lattice = [n1, n2, n3])");
-    const auto n = t.getInt("count");
-    if (n <= 0)
-      t.fail("count", "must be positive");
-    g.count = static_cast<int>(n);
+    g.count = static_cast<int>(t.getIntIn("count", 1, kMaxInclusions));
   }
   if (t.has("volume_fraction")) {
     const double f = t.getDouble("volume_fraction");
@@ -195,18 +195,17 @@ CellSpec readCellString(const std::string& text, const std::string& source,
     const auto v = c.getDoubleArray("resolution");
     if (v.size() != 3)
       c.fail("resolution", "must be N or [N1, N2, N3]");
-    for (int i = 0; i < 3; ++i)
-      cell.resolution[static_cast<std::size_t>(i)] =
-          static_cast<int>(v[static_cast<std::size_t>(i)]);
-    for (int i = 0; i < 3; ++i)
-      if (v[static_cast<std::size_t>(i)] != std::floor(v[static_cast<std::size_t>(i)]))
+    for (int i = 0; i < 3; ++i) {
+      const double vi = v[static_cast<std::size_t>(i)];
+      if (vi != std::floor(vi))
         c.fail("resolution", "must be integers");
+      if (!(vi >= 2 && vi <= kMaxResolution)) // before the cast: no overflow
+        c.fail("resolution", "each count must lie in [2, " + std::to_string(kMaxResolution) + "]");
+      cell.resolution[static_cast<std::size_t>(i)] = static_cast<int>(vi);
+    }
   } else {
-    cell.resolution.fill(static_cast<int>(c.getInt("resolution")));
+    cell.resolution.fill(static_cast<int>(c.getIntIn("resolution", 2, kMaxResolution)));
   }
-  for (int n : cell.resolution)
-    if (n < 2 || n > 4096)
-      c.fail("resolution", "each count must lie in [2, 4096]");
   if (c.has("size")) {
     const toml::node* s = c.tomlTable().get("size");
     if (s->is_array())
@@ -243,12 +242,7 @@ CellSpec readCellString(const std::string& text, const std::string& source,
 }
 
 CellSpec readCell(const std::filesystem::path& path, const CatalogProvider& catalog) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw Error("cannot open cell file", {path.string(), 0, ""});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return readCellString(ss.str(), path.string(), catalog);
+  return readCellString(core::readInputFile(path), path.string(), catalog);
 }
 
 } // namespace lamina::micro
