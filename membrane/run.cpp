@@ -30,6 +30,10 @@ public:
     Simulation sim(model_); // assemble K, M; build A; set up its solver
     openOutputs(sim);
     const double dt = sim.integrator().timeStep();
+    if (!(model_.time.t_end / dt <= kMaxSteps)) // the explicit stable step may be tiny
+      throw Error("t_end / dt = " + core::formatShort(model_.time.t_end / dt) + " steps; at most " +
+                      core::formatShort(kMaxSteps),
+                  {"", 0, "time.dt"});
     // Newmark: t_end is a multiple of dt by the case; explicit: cover t_end.
     const long steps = model_.time.integrator == IntegratorKind::Newmark
                            ? std::lround(model_.time.t_end / dt)
