@@ -71,13 +71,15 @@ std::string formatBytes(double bytes) {
   return os.str();
 }
 
-void requireMemory(double bytes, const std::string& what, const ErrorContext& context) {
+void requireMemory(double bytes, const std::string& what, const ErrorContext& context,
+                   const std::string& advice) {
+  const std::string tail = advice.empty() ? std::string() : "; " + advice;
   if (!std::isfinite(bytes))
-    throw Error(what + " needs more memory than can be counted", context);
+    throw Error(what + " needs more memory than can be counted" + tail, context);
   const double avail = availableMemoryBytes();
   if (avail > 0 && bytes > avail)
     throw Error(what + " needs about " + formatBytes(bytes) + " of memory, " + formatBytes(avail) +
-                    " available",
+                    " available" + tail,
                 context);
 }
 

@@ -25,8 +25,10 @@ std::string formatBytes(double bytes);
 
 /// Throws lamina::Error with @p context when @p bytes (an estimate of what
 /// @p what needs) exceeds availableMemoryBytes(): "WHAT needs about N of
-/// memory, M available". Also refuses a non-finite estimate.
-void requireMemory(double bytes, const std::string& what, const ErrorContext& context = {});
+/// memory, M available", followed by "; " and @p advice when one is given
+/// (what the user can do instead). Also refuses a non-finite estimate.
+void requireMemory(double bytes, const std::string& what, const ErrorContext& context = {},
+                   const std::string& advice = {});
 
 /// Throws lamina::Error naming @p option when @p threads is negative or above
 /// hardwareThreads() (0 = all of them; more threads than cores only slow the

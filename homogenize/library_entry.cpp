@@ -1,6 +1,7 @@
 #include "homogenize/library_entry.hpp"
 
 #include "materials/export.hpp"
+#include "micro/composite_voxel.hpp"
 #include "micro/phase_map_io.hpp"
 
 #include "core/error.hpp"
@@ -32,7 +33,6 @@ std::string entryName(const std::string& base, double J, bool sweep) {
   return buf;
 }
 
-namespace {
 std::string utcNow() {
   const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   std::tm tm{};
@@ -41,7 +41,6 @@ std::string utcNow() {
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
 }
-} // namespace
 
 materials::Material makeEntry(const std::string& name, const micro::CellSpec& spec,
                               const micro::UnitCell& cell, const Result& result,
@@ -101,13 +100,16 @@ EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& c
   EntryResult e{name, J, {}, std::nullopt};
   const Grid grid = gridOf(cell);
   const std::vector<double> density = spec.densities();
-  Homogenizer h(grid, cell.phase, spec.stiffnessesAt(J), density, options);
+  // composite voxels (if any) enter as one laminate stiffness each
+  micro::VoxelMaterials vm = micro::voxelMaterials(cell, spec.stiffnessesAt(J), density);
+  Homogenizer h(grid, std::move(vm.phase), std::move(vm.C), std::move(vm.density), options);
   std::optional<DispersionAccumulator> acc;
   if (spec.physical_size) {
     acc.emplace(grid, cell.phase, density);
     h.setDisplacementSink([&](int k, const double* u) { acc->addLoadCase(k, u); });
   }
   e.result = h.run();
+  e.result.voxel_fraction = cell.voxel_fraction; // per phase, cut voxels split by fraction
   if (acc)
     e.dispersion = acc->result();
   return e;

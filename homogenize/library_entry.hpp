@@ -66,6 +66,9 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
 /// dispersion_residuals (eq. 39 least squares, per load case).
 nlohmann::json toJson(const EntryResult& e);
 
+/// @return the current UTC time as ISO 8601 (provenance "time")
+std::string utcNow();
+
 /// Solver name written to provenance and docs.
 inline constexpr const char* kSolverName =
     "rotated staggered grid (Willot 2015, one-point hex) + FFT-preconditioned CG";

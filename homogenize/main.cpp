@@ -1,13 +1,15 @@
 /// @file main.cpp
 /// @brief `homogenize CELL.toml --name NAME [--library PATH] [--json]
 /// [--threads N] [--tol T] [--resolution N]`: effective C and density of a
-/// unit cell into the materials library.
+/// unit cell into the materials library. With `--path P --rate R --to S`:
+/// the nonlinear cell under that strain-rate history (nonlinear_run.hpp).
 
 #include "core/error.hpp"
 #include "core/names.hpp"
 #include "core/resources.hpp"
 #include "homogenize/homogenizer.hpp"
 #include "homogenize/library_entry.hpp"
+#include "homogenize/nonlinear_run.hpp"
 #include "materials/library.hpp"
 #include "micro/cell.hpp"
 #include "micro/unit_cell.hpp"
@@ -15,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -85,7 +88,9 @@ int main(int argc, char** argv) {
   int threads = 0, resolution = 0;
   double tol = 1e-5;
   app.add_option("cell", cell_path, "cell file (TOML)")->required();
-  app.add_option("--name", name, "library entry name (with a J sweep: NAME-J<J>)")->required();
+  app.add_option(
+      "--name", name,
+      "library entry name (with a J sweep: NAME-J<J>; with --tangent-rates: NAME-R<rate>)");
   app.add_option("--library", library, "library file (default: $LAMINA_LIBRARY, XDG data dir)");
   app.add_flag("--json", json, "print a JSON summary on stdout (one object per entry)");
   app.add_option("--threads", threads, "OpenMP and FFTW threads")->check(CLI::NonNegativeNumber);
@@ -99,6 +104,36 @@ int main(int argc, char** argv) {
                  "auto (measure above 64^3)")
       ->check(CLI::IsMember({"auto", "estimate", "measure"}));
   app.add_flag("--quiet", quiet, "no progress line");
+  // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
+  std::string path_name, out;
+  lamina::homogenize::PathSpec path;
+  lamina::homogenize::TangentSpec tangent;
+  std::vector<int> field_steps;
+  double eta = 0.1;
+  auto* path_opt =
+      app.add_option("--path", path_name,
+                     "nonlinear run: uniaxial-strain | shear | confined | uniaxial-stress")
+          ->check(CLI::IsMember({"uniaxial-stress", "uniaxial-strain", "shear", "confined"}));
+  app.add_option("--rate", path.rate, "nonlinear: driven strain rate (1/s)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--to", path.to, "nonlinear: final driven strain")->check(CLI::PositiveNumber);
+  app.add_option("--steps", path.steps, "nonlinear: load steps per leg (default 100)")
+      ->check(CLI::Range(1, 10000000));
+  app.add_flag("--unload", path.unload, "nonlinear: back to zero strain at the same rate");
+  app.add_option("--out", out, "nonlinear: history CSV (also OUT-phases.csv, OUT-fields.h5)");
+  app.add_option("--fields", field_steps, "nonlinear: steps whose fields are written (XDMF)")
+      ->delimiter(',');
+  app.add_option("--eta", eta, "nonlinear: CG forcing term per Newton step (default 0.1)")
+      ->check(CLI::Range(1e-12, 0.9));
+  app.add_option("--tangent-rates", tangent.rates,
+                 "rates (1/s, inf allowed) of effective tangent entries NAME-R<rate>")
+      ->delimiter(',');
+  app.add_option("--tangent-strain", tangent.strain,
+                 "driven strain of the state of the tangent entries (default 0)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--tangent-increment", tangent.increment,
+                 "strain increment a tangent is for: dt = increment / rate (default 1e-3)")
+      ->check(CLI::PositiveNumber);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -106,18 +141,70 @@ int main(int argc, char** argv) {
   }
   try {
     using namespace lamina;
-    core::checkName(name, "entry name", {"", 0, "--name"});
+    if (!name.empty()) // a nonlinear run without a library entry has none
+      core::checkName(name, "entry name", {"", 0, "--name"});
     core::checkThreads(threads, "--threads");
     const micro::CellSpec spec = micro::readCell(cell_path, micro::lazyCatalog(catalog));
     std::array<int, 3> n = spec.resolution;
     if (resolution > 0)
       n = {resolution, resolution, resolution};
+    // checked before anything large is allocated (three CG vectors, FFT
+    // buffers, phase map; docs/homogenize.md)
     const double voxels = double(n[0]) * double(n[1]) * double(n[2]);
     core::requireMemory(kBytesPerVoxel * voxels,
                         "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
                             " x " + std::to_string(n[2]) + " voxels",
-                        {cell_path, 0, resolution > 0 ? "--resolution" : "cell.resolution"});
+                        {cell_path, 0, resolution > 0 ? "--resolution" : "cell.resolution"},
+                        "run it distributed: mpirun -np N homogenize " + cell_path +
+                            " ... (each rank holds 1/N of the fields)");
     const micro::UnitCell cell = micro::buildCell(spec, n);
+    if (!path_name.empty() || !tangent.rates.empty()) {
+      path.path = *materials::parseDrivePath(path_name.empty() ? "uniaxial-strain" : path_name);
+      homogenize::NonlinearOptions nl;
+      nl.tol = tol;
+      nl.eta = eta;
+      nl.threads = threads;
+      nl.measure = plan == "auto" ? -1 : plan == "measure" ? 1 : 0;
+      if (path_opt->count() > 0 && !out.empty()) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const auto steps = homogenize::runPath(
+            spec, cell, path, nl, out, field_steps, [&](const homogenize::StepResult& r) {
+              if (!quiet)
+                std::fprintf(stderr,
+                             "step %d t %.4g s: E %.4g %.4g %.4g %.4g %.4g %.4g, Sigma %.4g %.4g "
+                             "%.4g %.4g %.4g %.4g MPa, newton %d krylov %d (%.2f s)\n",
+                             r.step, r.t, r.E[0], r.E[1], r.E[2], r.E[3], r.E[4], r.E[5],
+                             r.Sigma[0] / 1e6, r.Sigma[1] / 1e6, r.Sigma[2] / 1e6, r.Sigma[3] / 1e6,
+                             r.Sigma[4] / 1e6, r.Sigma[5] / 1e6, r.newton, r.krylov, r.wall_s);
+            });
+        int newton = 0, krylov = 0;
+        for (const auto& r : steps) {
+          newton += r.newton;
+          krylov += r.krylov;
+        }
+        std::printf("%zu steps of %s at %g /s on %d x %d x %d voxels: newton %d, krylov %d, "
+                    "wall %.2f s; wrote %s\n",
+                    steps.size(), path_name.c_str(), path.rate, cell.n[0], cell.n[1], cell.n[2],
+                    newton, krylov,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                    out.c_str());
+      } else if (path_opt->count() > 0 && tangent.rates.empty()) {
+        throw Error("a nonlinear run needs --out FILE.csv (or --tangent-rates)");
+      }
+      if (!tangent.rates.empty()) {
+        if (name.empty())
+          throw Error("--tangent-rates needs --name NAME");
+        tangent.path = path;
+        materials::Library lib(materials::Library::resolvePath(library));
+        homogenize::addTangentEntries(
+            spec, cell, name, tangent, nl, lib, overwrite, [&](const materials::Material& m) {
+              std::printf("added '%s' to %s\n", m.name.c_str(), lib.path().string().c_str());
+            });
+      }
+      return 0;
+    }
+    if (name.empty())
+      throw Error("--name NAME is required");
     materials::Library lib(materials::Library::resolvePath(library));
     homogenize::Options opt;
     opt.tol = tol;

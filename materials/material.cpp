@@ -22,22 +22,25 @@ void validate(const Material& m) {
   for (const Ply& p : m.plies)
     if (!(p.thickness > 0))
       throw Error("ply thickness must be positive (m)", ctx);
-  if (m.dispersion) {
-    const Matrix6& D = *m.dispersion;
-    if (!D.allFinite())
-      throw Error("dispersion has a non-finite entry", ctx);
-    const double scale = D.cwiseAbs().maxCoeff();
-    if ((D - D.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
-      throw Error("dispersion must be symmetric (kg/m, lamina order)", ctx);
-    // a Gram matrix: eigenvalues >= 0 up to round-off of its largest
-    const double lmin = Eigen::SelfAdjointEigenSolver<Matrix6>(D).eigenvalues().minCoeff();
-    if (lmin < -1e-10 * scale)
-      throw Error("dispersion must be positive semi-definite (smallest eigenvalue " +
-                      std::to_string(lmin) + " kg/m)",
-                  ctx);
-  }
+  if (m.dispersion)
+    validateDispersion(*m.dispersion, m.name);
   if (m.cell_size && !(m.cell_size->minCoeff() > 0 && m.cell_size->allFinite()))
     throw Error("cell_size must be positive and finite (m)", ctx);
+}
+
+void validateDispersion(const Matrix6& D, const std::string& name) {
+  const ErrorContext ctx{"", 0, name};
+  if (!D.allFinite())
+    throw Error("dispersion has a non-finite entry", ctx);
+  const double scale = D.cwiseAbs().maxCoeff();
+  if ((D - D.transpose()).cwiseAbs().maxCoeff() > 1e-12 * scale)
+    throw Error("dispersion must be symmetric (kg/m, lamina order)", ctx);
+  // a Gram matrix: eigenvalues >= 0 up to round-off of its largest
+  const double lmin = Eigen::SelfAdjointEigenSolver<Matrix6>(D).eigenvalues().minCoeff();
+  if (lmin < -1e-10 * scale)
+    throw Error("dispersion must be positive semi-definite (smallest eigenvalue " +
+                    std::to_string(lmin) + " kg/m)",
+                ctx);
 }
 
 std::array<double, 6> dispersionLengths(const Material& m) {

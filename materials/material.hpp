@@ -42,6 +42,10 @@ struct Material {
   std::optional<Eigen::Vector3d> cell_size;
 };
 
+/// Throws lamina::Error naming @p name unless the dispersion @p D (kg/m) is
+/// finite, symmetric and positive semi-definite.
+void validateDispersion(const Matrix6& D, const std::string& name);
+
 /// The characteristic lengths of micro-inertia, sqrt(zeta^2 D_II / rho) per
 /// lamina component I (m): a plane wave whose strain is component I alone
 /// (P waves along x: I = xx; S waves along x polarised in y: I = xy...)

@@ -109,7 +109,7 @@ private:
     probes_ = std::make_unique<CsvWriter>(opt_.out_dir / "probes.csv", h);
     energy_ = std::make_unique<CsvWriter>(
         opt_.out_dir / "energy.csv",
-        "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance" +
+        "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance,micro_kinetic" +
             std::string(extra_energy_ ? ",spring_work,damping_work" : ""));
     const auto names = sim.reactionNames();
     if (!names.empty()) {
@@ -178,8 +178,8 @@ private:
       max_balance_ = std::max(max_balance_, std::abs(e.balance));
       energy_scale_ = std::max({energy_scale_, total, std::abs(e.external_work),
                                 std::abs(e.reaction_work), std::abs(e.drag_work)});
-      std::vector<double> row{sim.time(),      e.kinetic,   e.strain, e.external_work,
-                              e.reaction_work, e.drag_work, total,    e.balance};
+      std::vector<double> row{sim.time(),  e.kinetic, e.strain,  e.external_work, e.reaction_work,
+                              e.drag_work, total,     e.balance, e.micro_kinetic};
       if (extra_energy_) {
         row.push_back(e.spring_work);
         row.push_back(e.damping_work);
@@ -212,6 +212,7 @@ private:
     const auto& e = last_energy_;
     s["energy"] = {{"initial", sim.initialEnergy()},
                    {"kinetic", e.kinetic},
+                   {"micro_kinetic", e.micro_kinetic},
                    {"strain", e.strain},
                    {"external_work", e.external_work},
                    {"reaction_work", e.reaction_work},
@@ -296,6 +297,7 @@ nlohmann::json runCase(const Model& model, const RunOptions& options) {
     return nlohmann::json{{"max_abs_w", s["max_abs_w"]},
                           {"max_speed", s["max_speed"]},
                           {"peak_reaction", reaction},
+                          {"peak_total_reaction", s["peak_reaction_total"]},
                           {"reactions", s["reactions"]}};
   };
   RunOptions with = options, without = options;

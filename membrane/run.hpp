@@ -29,7 +29,8 @@ nlohmann::json runModel(const Model& model, const RunOptions& options);
 /// `membrane run`: runModel, or for `compare_without_drag = true` two runs
 /// (DIR/with-drag, DIR/without-drag) and DIR/summary.json = the with-drag
 /// summary plus "drag_comparison" {with_drag, without_drag: {max_abs_w,
-/// peak_reaction, max_speed}}.
+/// peak_reaction (largest per-set peak), peak_total_reaction (peak of the
+/// magnitude of the sum of all reactions, springs included), max_speed}}.
 nlohmann::json runCase(const Model& model, const RunOptions& options);
 
 } // namespace lamina::membrane

@@ -90,7 +90,12 @@ Energy Simulation::energy() const {
   // Without a potential (tension-only fabric) U is the internal work done since t = 0.
   const double U =
       structure_->hasPotential() ? structure_->strainEnergy(state_.u) : u0_ + works_.internal;
-  return works_.energy(T, U, e0_);
+  Energy e = works_.energy(T, U, e0_);
+  if (const SparseMatrix* MD = structure_->microMass()) {
+    multiply(*MD, state_.v, y);
+    e.micro_kinetic = 0.5 * state_.v.dot(y);
+  }
+  return e;
 }
 
 std::vector<Eigen::Vector3d> Simulation::reactionSums() const {

@@ -3,9 +3,11 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/toml_reader.hpp"
+#include "micro/image_cell.hpp"
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -58,29 +60,51 @@ Eigen::Vector3d readVector3(const core::TableReader& t, const std::string& key) 
   return {v[0], v[1], v[2]};
 }
 
-int readAxis(const core::TableReader& t, const std::string& key) {
+/// A fiber direction or layer normal: "x", "y", "z", a vector along an axis,
+/// or integers [u, v, w] (lattice direction / plane indices: periodic).
+Eigen::Vector3i readLattice(const core::TableReader& t, const std::string& key) {
   const toml::node* n = t.tomlTable().get(key);
   if (n && n->is_string()) {
     const std::string w = t.getString(key);
-    if (w == "x")
-      return 0;
-    if (w == "y")
-      return 1;
-    if (w == "z")
-      return 2;
-    t.fail(key, "must be \"x\", \"y\", \"z\" or a vector along one of them");
+    if (w == "x" || w == "y" || w == "z")
+      return Eigen::Vector3i::Unit(w[0] - 'x');
+    t.fail(key, "must be \"x\", \"y\", \"z\" or a vector");
   }
   const Eigen::Vector3d d = readVector3(t, key);
-  int axis = -1;
-  for (int i = 0; i < 3; ++i)
-    if (d[i] != 0) {
-      if (axis >= 0)
-        t.fail(key, "must lie along a coordinate axis (periodic fibers/layers)");
-      axis = i;
-    }
-  if (axis < 0)
+  if (!(d.norm() > 0))
     t.fail(key, "must not be the zero vector");
-  return axis;
+  for (int i = 0; i < 3; ++i)
+    if (d.cwiseAbs()[i] == d.cwiseAbs().sum())
+      return Eigen::Vector3i::Unit(i);
+  for (int i = 0; i < 3; ++i)
+    if (d[i] != std::floor(d[i]) || std::abs(d[i]) > 16)
+      t.fail(key, "an oblique direction must be integers [u, v, w] with |u| <= 16 (periodic: a "
+                  "fiber runs along u Lx ex + v Ly ey + w Lz ez, a layer lies between the planes "
+                  "u x/Lx + v y/Ly + w z/Lz = const)");
+  return d.cast<int>();
+}
+
+/// `resolution = N` or `[N1, N2, N3]`, integers in [2, kMaxResolution]
+/// (checked before any cast, so no value wraps round to a small one)
+std::array<int, 3> numberList(const core::TableReader& c, const std::string& key) {
+  const toml::node* res = c.tomlTable().get(key);
+  const std::string range = "each count must lie in [2, " + std::to_string(kMaxResolution) + "]";
+  if (!res->is_array()) {
+    const auto n = static_cast<int>(c.getIntIn(key, 2, kMaxResolution));
+    return {n, n, n};
+  }
+  const auto v = c.getDoubleArray(key);
+  if (v.size() != 3)
+    c.fail(key, "must be N or [N1, N2, N3]");
+  std::array<int, 3> n{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (v[i] != std::floor(v[i]))
+      c.fail(key, "must be integers");
+    if (!(v[i] >= 2 && v[i] <= kMaxResolution))
+      c.fail(key, range);
+    n[i] = static_cast<int>(v[i]);
+  }
+  return n;
 }
 
 double positive(const core::TableReader& t, const std::string& key) {
@@ -122,11 +146,11 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
   }
   case Shape::Fiber:
     p.radius = positive(t, "radius");
-    p.axis = readAxis(t, "direction");
+    p.setLattice(readLattice(t, "direction"));
     break;
   case Shape::Layer:
     p.thickness = positive(t, "thickness");
-    p.axis = readAxis(t, "normal");
+    p.setLattice(readLattice(t, "normal"));
     break;
   }
   const std::string placement = t.getString("placement", "single");
@@ -188,23 +212,42 @@ CellSpec readCellString(const std::string& text, const std::string& source,
   cell.text = text;
   const core::TableReader c = root.table("cell");
   cell.description = c.getString("description", "");
-  const toml::node* res = c.tomlTable().get("resolution");
-  if (!res)
-    c.fail("resolution", "required: N or [N1, N2, N3]");
-  if (res->is_array()) {
-    const auto v = c.getDoubleArray("resolution");
-    if (v.size() != 3)
-      c.fail("resolution", "must be N or [N1, N2, N3]");
-    for (int i = 0; i < 3; ++i) {
-      const double vi = v[static_cast<std::size_t>(i)];
-      if (vi != std::floor(vi))
-        c.fail("resolution", "must be integers");
-      if (!(vi >= 2 && vi <= kMaxResolution)) // before the cast: no overflow
-        c.fail("resolution", "each count must lie in [2, " + std::to_string(kMaxResolution) + "]");
-      cell.resolution[static_cast<std::size_t>(i)] = static_cast<int>(vi);
+  if (c.has("image")) {
+    cell.image = readImageSource(c, source);
+    if (c.has("voxel_size")) {
+      const toml::node* v = c.tomlTable().get("voxel_size");
+      cell.voxel_size = v->is_array() ? readVector3(c, "voxel_size")
+                                      : Eigen::Vector3d::Constant(c.getDouble("voxel_size"));
+      if (!(cell.voxel_size->minCoeff() > 0))
+        c.fail("voxel_size", "voxel edge lengths must be positive");
+      cell.physical_size = true; // metres, like size: the cell has a scale
+    }
+    const std::array<int, 3> shape = imageShape(*cell.image);
+    if (c.has("resolution")) {
+      const auto v = numberList(c, "resolution");
+      if (std::array<int, 3>{v[0], v[1], v[2]} != shape)
+        c.fail("resolution", "size mismatch: the image gives " + std::to_string(shape[0]) + " x " +
+                                 std::to_string(shape[1]) + " x " + std::to_string(shape[2]) +
+                                 " voxels (after crop and downsample); drop resolution or fix it");
+    }
+    cell.resolution = shape;
+    if (cell.voxel_size) {
+      cell.size = cell.voxel_size->cwiseProduct(Eigen::Vector3d(shape[0], shape[1], shape[2]));
+      if (!(cell.size.maxCoeff() <= kMaxCellEdge))
+        c.fail("voxel_size", "voxel sizes are in metres; the cell would be " +
+                                 core::formatShort(cell.size.maxCoeff()) + " m across (limit " +
+                                 core::formatShort(kMaxCellEdge) + " m)");
     }
   } else {
-    cell.resolution.fill(static_cast<int>(c.getIntIn("resolution", 2, kMaxResolution)));
+    std::string key;
+    if (hasImageKey(c, key))
+      c.fail(key, "applies to image cells (image = \"PATH\") only");
+    if (!c.tomlTable().get("resolution"))
+      c.fail("resolution", "required: N or [N1, N2, N3]");
+    const auto v = numberList(c, "resolution");
+    cell.resolution = {v[0], v[1], v[2]};
+    if (c.has("composite_voxels"))
+      cell.composite_voxels = c.getBool("composite_voxels", true);
   }
   if (c.has("size")) {
     const toml::node* s = c.tomlTable().get("size");
@@ -228,6 +271,18 @@ CellSpec readCellString(const std::string& text, const std::string& source,
     Phase ph = readPhase(t, catalog);
     if (cell.phaseIndex(ph.name) >= 0)
       t.fail("name", "duplicate phase name '" + ph.name + "'");
+    if (t.has("id")) {
+      const auto id = t.getInt("id");
+      if (id < std::numeric_limits<std::int32_t>::min() ||
+          id > std::numeric_limits<std::int32_t>::max())
+        t.fail("id", "must fit in 32 bits");
+      ph.id = static_cast<std::int32_t>(id);
+      for (const Phase& o : cell.phases)
+        if (o.id == ph.id)
+          t.fail("id", "phase '" + o.name + "' already owns id " + std::to_string(id));
+    } else if (cell.image) {
+      t.fail("id", "an image cell needs id = K on every phase: the image value it owns");
+    }
     cell.phases.push_back(std::move(ph));
   }
   int swept = 0;
@@ -235,6 +290,8 @@ CellSpec readCellString(const std::string& text, const std::string& source,
     if (cell.phases[i].J.size() > 1 && ++swept > 1)
       phases[i].fail("J", "only one phase may carry a list of J states");
   const auto groups = root.tableArray("inclusions");
+  if (cell.image && !groups.empty())
+    groups[0].failHere("an image cell takes its voxels from the image: no [[inclusions]]");
   for (std::size_t i = 0; i < groups.size(); ++i)
     cell.groups.push_back(readGroup(groups[i], cell, i));
   root.finish();

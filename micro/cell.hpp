@@ -27,6 +27,7 @@
 
 #include "micro/inclusion.hpp"
 #include "micro/phase.hpp"
+#include "micro/voxel_image.hpp"
 
 #include <array>
 #include <cstdint>
@@ -74,8 +75,11 @@ struct CellSpec {
   std::array<int, 3> resolution{32, 32, 32};      ///< voxels along x, y, z
   Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths (m; 1 if not given)
   bool physical_size = false; ///< `size` was given (metres): the cell has a scale (micro-inertia)
-  std::vector<Phase> phases;  ///< phases[0] is the matrix
-  std::vector<InclusionGroup> groups; ///< inclusion groups, placed in order
+  std::optional<ImageSource> image;          ///< set for an image cell (`image = "PATH"`)
+  std::optional<Eigen::Vector3d> voxel_size; ///< image cells: `voxel_size` (m; overrides the file)
+  std::optional<bool> composite_voxels;      ///< generated cells: `composite_voxels`
+  std::vector<Phase> phases;                 ///< phases[0] is the matrix
+  std::vector<InclusionGroup> groups;        ///< inclusion groups, placed in order
 
   /// @return the index of the phase named @p name, -1 if none
   int phaseIndex(const std::string& name) const;

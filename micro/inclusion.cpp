@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numeric>
 
 namespace lamina::micro {
 
@@ -39,6 +41,97 @@ Eigen::Vector3d nearestImage(Eigen::Vector3d d, const Eigen::Vector3d& L) {
   return d;
 }
 
+namespace {
+
+int gcd3(const Eigen::Vector3i& m) {
+  return std::gcd(std::gcd(std::abs(m[0]), std::abs(m[1])), std::abs(m[2]));
+}
+
+/// Oblique fiber: the offset from the nearest copy of the axis line (through
+/// centre + lattice translations) to the point d (relative to the centre,
+/// nearest image). A line through a translation T is the same line as
+/// through T + A (A the fiber's lattice vector), so the copies within
+/// |u_i|/2 + 1 cells along each axis cover every line that can come within
+/// half a cell of d.
+Eigen::Vector3d offsetFromFiber(const Eigen::Vector3d& d, const Eigen::Vector3d& dir,
+                                const Eigen::Vector3i& m, const Eigen::Vector3d& L) {
+  Eigen::Vector3d best = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
+  const int K0 = std::abs(m[0]) / 2 + 1, K1 = std::abs(m[1]) / 2 + 1, K2 = std::abs(m[2]) / 2 + 1;
+  for (int a = -K0; a <= K0; ++a)
+    for (int b = -K1; b <= K1; ++b)
+      for (int c = -K2; c <= K2; ++c) {
+        const Eigen::Vector3d q = d + Eigen::Vector3d(a * L[0], b * L[1], c * L[2]);
+        const Eigen::Vector3d perp = q - q.dot(dir) * dir;
+        if (perp.squaredNorm() < best.squaredNorm())
+          best = perp;
+      }
+  return best;
+}
+
+/// Layer: the reciprocal vector G = (h/L_x, k/L_y, l/L_z); the slab is where
+/// G.(p - centre) lies within thickness/2 |G| of an integer.
+Eigen::Vector3d reciprocal(const Eigen::Vector3i& m, const Eigen::Vector3d& L) {
+  return Eigen::Vector3d(m[0] / L[0], m[1] / L[1], m[2] / L[2]);
+}
+
+} // namespace
+
+void Inclusion::setLattice(const Eigen::Vector3i& m) {
+  const int g = gcd3(m);
+  lattice = m / std::max(g, 1);
+  axis = -1;
+  for (int i = 0; i < 3; ++i)
+    if (lattice.cwiseAbs() == Eigen::Vector3i::Unit(i))
+      axis = i;
+}
+
+Eigen::Vector3d Inclusion::unitDirection(const Eigen::Vector3d& L) const {
+  if (shape == Shape::Layer)
+    return reciprocal(lattice, L).normalized();
+  return Eigen::Vector3d(lattice[0] * L[0], lattice[1] * L[1], lattice[2] * L[2]).normalized();
+}
+
+double Inclusion::periodicSpacing(const Eigen::Vector3d& L) const {
+  if (shape == Shape::Layer)
+    return 1.0 / reciprocal(lattice, L).norm();
+  // fiber: the shortest offset between two distinct copies of the axis
+  const Eigen::Vector3d dir = unitDirection(L);
+  double best = std::numeric_limits<double>::max();
+  const int K = lattice.cwiseAbs().maxCoeff() + 1;
+  for (int a = -K; a <= K; ++a)
+    for (int b = -K; b <= K; ++b)
+      for (int c = -K; c <= K; ++c) {
+        const Eigen::Vector3d q(a * L[0], b * L[1], c * L[2]);
+        const double r = (q - q.dot(dir) * dir).norm();
+        if (r > 1e-9 * L.maxCoeff())
+          best = std::min(best, r);
+      }
+  return best;
+}
+
+Eigen::Vector3d Inclusion::normalAt(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const {
+  const Eigen::Vector3d d = nearestImage(p - center, L);
+  switch (shape) {
+  case Shape::Sphere:
+  case Shape::Ellipsoid: {
+    // gradient of |R^T d / semi|^2
+    const Eigen::Vector3d local = R.transpose() * d;
+    const Eigen::Vector3d g = R * (local.array() / semi.array().square()).matrix();
+    return g.norm() > 0 ? g.normalized() : Eigen::Vector3d::UnitX();
+  }
+  case Shape::Fiber: {
+    const Eigen::Vector3d off = offsetFromFiber(d, unitDirection(L), lattice, L);
+    return off.norm() > 0 ? off.normalized() : Eigen::Vector3d::UnitX();
+  }
+  case Shape::Layer: {
+    double s = reciprocal(lattice, L).dot(d);
+    s -= std::round(s);
+    return (s >= 0 ? 1.0 : -1.0) * unitDirection(L);
+  }
+  }
+  return Eigen::Vector3d::UnitX();
+}
+
 bool Inclusion::contains(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const {
   const Eigen::Vector3d d = nearestImage(p - center, L);
   switch (shape) {
@@ -48,14 +141,22 @@ bool Inclusion::contains(const Eigen::Vector3d& p, const Eigen::Vector3d& L) con
     return (local.array() / semi.array()).square().sum() <= 1.0;
   }
   case Shape::Fiber: {
+    if (axis < 0)
+      return offsetFromFiber(d, unitDirection(L), lattice, L).squaredNorm() <= radius * radius;
     double r2 = 0;
     for (int i = 0; i < 3; ++i)
       if (i != axis)
         r2 += d[i] * d[i];
     return r2 <= radius * radius;
   }
-  case Shape::Layer:
-    return std::abs(d[axis]) <= 0.5 * thickness;
+  case Shape::Layer: {
+    if (axis >= 0)
+      return std::abs(d[axis]) <= 0.5 * thickness;
+    const Eigen::Vector3d G = reciprocal(lattice, L);
+    double s = G.dot(d);
+    s -= std::round(s);
+    return std::abs(s) / G.norm() <= 0.5 * thickness;
+  }
   }
   return false;
 }
@@ -65,10 +166,11 @@ double Inclusion::volume(const Eigen::Vector3d& L) const {
   case Shape::Sphere:
   case Shape::Ellipsoid:
     return 4.0 / 3.0 * M_PI * semi.prod();
-  case Shape::Fiber:
-    return M_PI * radius * radius * L[axis];
-  case Shape::Layer:
-    return thickness * L.prod() / L[axis];
+  case Shape::Fiber: // the axis crosses the cell once along u L_x e_x + v L_y e_y + w L_z e_z
+    return M_PI * radius * radius *
+           Eigen::Vector3d(lattice[0] * L[0], lattice[1] * L[1], lattice[2] * L[2]).norm();
+  case Shape::Layer: // one slab per plane spacing 1/|G|
+    return thickness * L.prod() * reciprocal(lattice, L).norm();
   }
   return 0;
 }
@@ -83,12 +185,15 @@ Eigen::Vector3d Inclusion::halfExtent(const Eigen::Vector3d& L) const {
       e[i] = std::sqrt((R.row(i).transpose().array() * semi.array()).square().sum());
     return e;
   case Shape::Fiber:
+    if (axis < 0)
+      return 0.5 * L; // an oblique fiber crosses the whole cell
     e.setConstant(radius);
     e[axis] = 0.5 * L[axis];
     return e;
   case Shape::Layer:
     e = 0.5 * L;
-    e[axis] = 0.5 * thickness;
+    if (axis >= 0)
+      e[axis] = 0.5 * thickness;
     return e;
   }
   return Eigen::Vector3d::Zero();
@@ -164,6 +269,11 @@ bool overlaps(const Inclusion& a, const Inclusion& b, double gap, const Eigen::V
             return true;
         }
     return false;
+  }
+  if (a.shape == Shape::Fiber && b.shape == Shape::Fiber && (a.axis < 0 || b.axis < 0)) {
+    if (a.lattice != b.lattice && a.lattice != -b.lattice)
+      return true; // crossing oblique fibers: not placed together
+    return offsetFromFiber(d0, a.unitDirection(L), a.lattice, L).norm() < a.radius + b.radius + gap;
   }
   if (a.shape == Shape::Fiber && b.shape == Shape::Fiber) {
     if (a.axis == b.axis) {

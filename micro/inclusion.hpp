@@ -5,9 +5,12 @@
 ///
 /// Shapes: sphere (an ellipsoid with equal semi-axes), ellipsoid (semi-axes
 /// a, b, c along its own axes, rotated by R), fiber (infinite circular
-/// cylinder along a coordinate axis, periodic along it) and layer (slab
-/// normal to a coordinate axis, spanning the cell). Lengths are in the units
-/// of the cell size. Positions are periodic: distances use the nearest image.
+/// cylinder along a lattice direction u L_x e_x + v L_y e_y + w L_z e_z with
+/// integers u, v, w: periodic, a coordinate axis in the simplest case) and
+/// layer (slab between the lattice planes h x/L_x + k y/L_y + l z/L_z = const,
+/// integers h, k, l: normal to a coordinate axis in the simplest case).
+/// Lengths are in the units of the cell size. Positions are periodic:
+/// distances use the nearest image.
 
 #include <Eigen/Dense>
 
@@ -32,7 +35,22 @@ struct Inclusion {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< columns: the ellipsoid axes in cell axes
   double radius = 0;                                ///< fiber radius
   double thickness = 0;                             ///< layer thickness
-  int axis = 0; ///< fiber direction / layer normal (0=x,1=y,2=z)
+  int axis = 0; ///< fiber direction / layer normal (0=x,1=y,2=z), -1 if oblique
+  /// fiber: lattice direction [u, v, w]; layer: plane indices [h, k, l]
+  /// (integers without a common factor; e_axis for an axis-aligned one)
+  Eigen::Vector3i lattice = Eigen::Vector3i(1, 0, 0);
+
+  /// Sets the direction (fiber) or plane indices (layer) to @p m (reduced by
+  /// their greatest common divisor); axis-aligned ones set @p axis too.
+  void setLattice(const Eigen::Vector3i& m);
+  /// @return the unit fiber direction or layer normal in a cell of size @p L
+  Eigen::Vector3d unitDirection(const Eigen::Vector3d& L) const;
+  /// @return the unit outward normal of the surface near @p p (the gradient
+  /// direction of the shape's defining function there)
+  Eigen::Vector3d normalAt(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const;
+  /// @return oblique fiber: the distance between neighbouring parallel
+  /// copies (the fiber must be thinner); oblique layer: the plane spacing
+  double periodicSpacing(const Eigen::Vector3d& L) const;
 
   /// @return whether @p p (cell coordinates) lies inside, using the nearest
   /// periodic image of p - center in a cell of size @p L

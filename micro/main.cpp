@@ -1,10 +1,13 @@
 /// @file main.cpp
-/// @brief `micro CELL.toml --out PHASES.h5`: builds a unit cell, writes its
-/// phase map (HDF5 + XDMF) and prints the volume fractions reached.
+/// @brief `micro CELL.toml --out PHASES.h5|.vti|.raw|.tif`: builds a unit
+/// cell (generated or from an image), writes its phase map (HDF5 + XDMF, or
+/// an image in the same formats image cells read: the labels are the phase
+/// ids) and prints the volume fractions reached.
 
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "micro/cell.hpp"
+#include "micro/image_cell.hpp"
 #include "micro/phase_map_io.hpp"
 #include "micro/unit_cell.hpp"
 
@@ -12,14 +15,22 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 
 int main(int argc, char** argv) {
   CLI::App app{"micro: build a voxel unit cell and write its phase map"};
   std::string cell_path, out, catalog;
+  std::string encoding = "appended";
+  bool zlib = false;
   int resolution = 0;
   app.add_option("cell", cell_path, "cell file (TOML)")->required();
-  app.add_option("--out", out, "phase map HDF5 file (an .xdmf is written beside it)")->required();
+  app.add_option("--out", out,
+                 "phase map: .h5 (+ .xdmf beside it), .vti, .raw or .tif (labels = phase ids)")
+      ->required();
+  app.add_option("--vti-encoding", encoding, "VTI data: ascii, binary (base64) or appended (raw)")
+      ->check(CLI::IsMember({"ascii", "binary", "appended"}));
+  app.add_flag("--zlib", zlib, "VTI binary/appended: zlib-compressed blocks");
   app.add_option("--resolution", resolution, "override the cell's resolution (N^3 voxels)");
   app.add_option("--catalog", catalog, "catalog file (default: $LAMINA_CATALOG or the built-in)");
   try {
@@ -37,7 +48,27 @@ int main(int argc, char** argv) {
     std::vector<std::string> names;
     for (const auto& p : spec.phases)
       names.push_back(p.name);
-    writePhaseMap(cell, names, out);
+    ImageFormat format = ImageFormat::Hdf5;
+    if (!formatFromExtension(out, format))
+      throw lamina::Error("--out: cannot tell the format from the extension (.h5, .vti, .raw, "
+                          ".tif)",
+                          {out, 0, "--out"});
+    const VoxelImage labels = labelImage(spec, cell);
+    std::string keys;
+    if (format == ImageFormat::Hdf5) {
+      UnitCell labelled = cell; // the HDF5 phase map holds the phase ids too
+      labelled.phase = labels.value;
+      writePhaseMap(labelled, names, out);
+      keys = "image = \"" + std::filesystem::path(out).filename().string() +
+             "\"\ndataset = \"/phases\"\n";
+    } else {
+      ImageWriteOptions wo;
+      wo.vti = encoding == "ascii"    ? VtiEncoding::Ascii
+               : encoding == "binary" ? VtiEncoding::Binary
+                                      : VtiEncoding::Appended;
+      wo.zlib = zlib;
+      keys = writeImage(labels, out, format, wo);
+    }
     std::printf("cell %s: %d x %d x %d voxels, %zu inclusions\n", cell_path.c_str(), n[0], n[1],
                 n[2], cell.inclusions.size());
     for (std::size_t g = 0; g < spec.groups.size(); ++g)
@@ -50,7 +81,8 @@ int main(int argc, char** argv) {
     for (std::size_t p = 0; p < spec.phases.size(); ++p)
       std::printf("  phase %zu %-16s voxel fraction %.6f\n", p, spec.phases[p].name.c_str(),
                   cell.voxel_fraction[p]);
-    std::printf("wrote %s\n", out.c_str());
+    std::printf("wrote %s; an image cell reads it back with the [cell] keys\n%s", out.c_str(),
+                keys.c_str());
   } catch (const lamina::Error& e) {
     std::fprintf(stderr, "micro: %s\n", e.what());
     return lamina::kExitUserError;

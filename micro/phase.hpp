@@ -16,6 +16,7 @@
 #include "materials/law.hpp"
 #include "materials/stiffness.hpp"
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -39,6 +40,7 @@ struct Phase {
   /// The law object of the phase (shared by all its voxels): GvboLaw or
   /// LinearElasticLaw(C). Linear solvers keep using C (or stiffnessAt).
   materials::LawPtr model;
+  std::optional<std::int32_t> id; ///< image value the phase owns (`id = K`; image cells)
 
   /// Stiffness of the phase at matrix state @p J (lamina order, Pa). For a
   /// gvbo phase: isotropic from gvboModuli(J) (eqs. 13-16 of the chapter);

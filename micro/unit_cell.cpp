@@ -2,6 +2,8 @@
 
 #include "core/error.hpp"
 #include "core/resources.hpp"
+#include "micro/composite_voxel.hpp"
+#include "micro/image_cell.hpp"
 
 #include <cmath>
 #include <limits>
@@ -15,7 +17,14 @@ void UnitCell::countFractions() {
     ++counts[static_cast<std::size_t>(p)];
   voxel_fraction.assign(counts.size(), 0.0);
   for (std::size_t i = 0; i < counts.size(); ++i)
-    voxel_fraction[i] = static_cast<double>(counts[i]) / static_cast<double>(phase.size());
+    voxel_fraction[i] = static_cast<double>(counts[i]);
+  for (const CompositeVoxel& c : composites) {
+    voxel_fraction[static_cast<std::size_t>(phase[c.index])] -= 1;
+    voxel_fraction[static_cast<std::size_t>(c.inside)] += c.fraction;
+    voxel_fraction[static_cast<std::size_t>(c.outside)] += 1 - c.fraction;
+  }
+  for (double& f : voxel_fraction)
+    f /= static_cast<double>(phase.size());
 }
 
 namespace {
@@ -26,6 +35,16 @@ namespace {
 }
 
 void checkFits(const CellSpec& spec, const InclusionGroup& g, const Inclusion& inc) {
+  if ((inc.shape == Shape::Fiber || inc.shape == Shape::Layer) && inc.axis < 0) {
+    const double width = inc.shape == Shape::Fiber ? 2 * inc.radius : inc.thickness;
+    if (width + g.min_gap >= inc.periodicSpacing(spec.size))
+      groupError(spec, g,
+                 "the oblique " + toString(inc.shape) + " (with min_gap) is wider than the " +
+                     "spacing of its periodic copies (" +
+                     std::to_string(inc.periodicSpacing(spec.size)) +
+                     "): lower its size or volume_fraction");
+    return;
+  }
   const Eigen::Vector3d e = inc.halfExtent(spec.size);
   for (int i = 0; i < 3; ++i) {
     const bool unbounded = (inc.shape == Shape::Fiber && i == inc.axis) ||
@@ -135,6 +154,28 @@ std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>
   return placed;
 }
 
+void voxelRange(const Inclusion& inc, const std::array<int, 3>& n, const Eigen::Vector3d& size,
+                std::array<int, 3>& lo, std::array<int, 3>& hi) {
+  // bounding box of voxel indices around the centre, wrapped periodically
+  const Eigen::Vector3d e = inc.halfExtent(size);
+  for (std::size_t d = 0; d < 3; ++d) {
+    const double h = size[static_cast<int>(d)] / n[d];
+    const double c = inc.center[static_cast<int>(d)], r = e[static_cast<int>(d)];
+    if (2 * r >= size[static_cast<int>(d)]) {
+      lo[d] = 0;
+      hi[d] = n[d] - 1;
+    } else {
+      lo[d] = static_cast<int>(std::floor((c - r) / h - 0.5)) - 1;
+      hi[d] = static_cast<int>(std::ceil((c + r) / h - 0.5)) + 1;
+    }
+    // never visit a voxel twice (threads write disjoint voxels)
+    if (hi[d] - lo[d] + 1 >= n[d]) {
+      lo[d] = 0;
+      hi[d] = n[d] - 1;
+    }
+  }
+}
+
 std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
                                    const std::array<int, 3>& n, const Eigen::Vector3d& size) {
   const std::size_t total = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *
@@ -142,26 +183,8 @@ std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
   std::vector<std::int32_t> map(total, 0);
   const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
   for (const Inclusion& inc : inclusions) {
-    // bounding box of voxel indices around the centre, wrapped periodically
-    const Eigen::Vector3d e = inc.halfExtent(size);
     std::array<int, 3> lo{}, hi{};
-    for (int d = 0; d < 3; ++d) {
-      if (2 * e[d] >= size[d]) {
-        lo[static_cast<std::size_t>(d)] = 0;
-        hi[static_cast<std::size_t>(d)] = n[static_cast<std::size_t>(d)] - 1;
-      } else {
-        lo[static_cast<std::size_t>(d)] =
-            static_cast<int>(std::floor((inc.center[d] - e[d]) / h[d] - 0.5)) - 1;
-        hi[static_cast<std::size_t>(d)] =
-            static_cast<int>(std::ceil((inc.center[d] + e[d]) / h[d] - 0.5)) + 1;
-      }
-      // never visit a voxel twice (threads write disjoint voxels)
-      if (hi[static_cast<std::size_t>(d)] - lo[static_cast<std::size_t>(d)] + 1 >=
-          n[static_cast<std::size_t>(d)]) {
-        lo[static_cast<std::size_t>(d)] = 0;
-        hi[static_cast<std::size_t>(d)] = n[static_cast<std::size_t>(d)] - 1;
-      }
-    }
+    voxelRange(inc, n, size, lo, hi);
     auto wrap = [](int i, int m) { return ((i % m) + m) % m; };
 #pragma omp parallel for schedule(static)
     for (int i = lo[0]; i <= hi[0]; ++i)
@@ -184,6 +207,16 @@ std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
 UnitCell buildCell(const CellSpec& spec, std::array<int, 3> n) {
   if (n[0] == 0 && n[1] == 0 && n[2] == 0)
     n = spec.resolution;
+  if (spec.image) {
+    if (n != spec.resolution)
+      throw Error("an image cell takes its resolution from the image (" +
+                      std::to_string(spec.resolution[0]) + " x " +
+                      std::to_string(spec.resolution[1]) + " x " +
+                      std::to_string(spec.resolution[2]) +
+                      "); use downsample = F or crop to change it",
+                  {spec.file, 0, "resolution"});
+    return buildImageCell(spec);
+  }
   for (int d : n)
     if (d < 2 || d > kMaxResolution)
       throw Error("resolution must be in [2, " + std::to_string(kMaxResolution) +
@@ -200,6 +233,8 @@ UnitCell buildCell(const CellSpec& spec, std::array<int, 3> n) {
   cell.phase_count = static_cast<int>(spec.phases.size());
   cell.inclusions = placeInclusions(spec, cell.target_fraction, cell.analytic_fraction);
   cell.phase = voxelize(cell.inclusions, n, spec.size);
+  if (spec.composite_voxels.value_or(kCompositeVoxelsByDefault))
+    cell.composites = findCompositeVoxels(cell.inclusions, n, spec.size, cell.phase);
   cell.countFractions();
   return cell;
 }

@@ -17,6 +17,15 @@
 
 namespace lamina::micro {
 
+/// One voxel cut by an inclusion's interface (composite_voxel.hpp).
+struct CompositeVoxel {
+  std::size_t index = 0;  ///< voxel (C order, x slowest)
+  int inside = 0;         ///< phase of the inclusion
+  int outside = 0;        ///< phase around it (the matrix, phase 0)
+  double fraction = 0;    ///< volume fraction of `inside` in the voxel, in (0, 1)
+  Eigen::Vector3d normal; ///< unit interface normal (pointing out of the inclusion)
+};
+
 /// A unit cell with its phase map.
 struct UnitCell {
   std::array<int, 3> n{0, 0, 0};                  ///< voxels along x, y, z
@@ -24,9 +33,10 @@ struct UnitCell {
   std::vector<std::int32_t> phase;     ///< phase index per voxel, C order, x slowest: (i*n1+j)*n2+k
   std::vector<Inclusion> inclusions;   ///< every placed inclusion
   std::vector<double> target_fraction; ///< per group: the requested fraction (NaN if none)
-  std::vector<double> analytic_fraction; ///< per group: analytic volume / cell volume
-  std::vector<double> voxel_fraction;    ///< per phase: fraction of voxels
-  int phase_count = 0;                   ///< number of phases
+  std::vector<double> analytic_fraction;  ///< per group: analytic volume / cell volume
+  std::vector<double> voxel_fraction;     ///< per phase: fraction of voxels
+  int phase_count = 0;                    ///< number of phases
+  std::vector<CompositeVoxel> composites; ///< cut voxels (empty without composite voxels)
 
   /// @return the number of voxels
   std::size_t voxels() const { return phase.size(); }
@@ -37,19 +47,30 @@ struct UnitCell {
                static_cast<std::size_t>(n[2]) +
            static_cast<std::size_t>(k);
   }
-  /// Recomputes voxel_fraction from the phase map.
+  /// Recomputes voxel_fraction from the phase map and the composite voxels
+  /// (a cut voxel counts its fraction to each of its two phases).
   void countFractions();
 };
 
+/// Whether generated cells use composite voxels when the cell file does not
+/// say (`composite_voxels`): see docs/homogenize.md for the measurement.
+inline constexpr bool kCompositeVoxelsByDefault = false;
+
 /// Places the inclusions of @p spec and samples the phase map at resolution
-/// @p n (the spec's resolution if all zero). Throws lamina::Error naming the
-/// file and group when an inclusion does not fit in the cell or random
-/// placement fails to reach the target.
+/// @p n (the spec's resolution if all zero), with composite voxels at the
+/// interfaces if the spec asks (or by default, kCompositeVoxelsByDefault). Throws lamina::Error
+/// naming the file and group when an inclusion does not fit in the cell or random placement fails
+/// to reach the target.
 UnitCell buildCell(const CellSpec& spec, std::array<int, 3> n = {0, 0, 0});
 
 /// Places the inclusions only (continuous geometry); used by buildCell.
 std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>& target,
                                        std::vector<double>& analytic);
+
+/// The voxel index range (unwrapped, inclusive; may extend past the grid and
+/// wraps periodically) that can hold part of @p inc, never longer than the grid.
+void voxelRange(const Inclusion& inc, const std::array<int, 3>& n, const Eigen::Vector3d& size,
+                std::array<int, 3>& lo, std::array<int, 3>& hi);
 
 /// Samples a phase map from placed inclusions: voxel centre inside an
 /// inclusion -> its phase, else phase 0.

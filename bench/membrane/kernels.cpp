@@ -2,10 +2,13 @@
 // (bench/membrane/bench.toml: N x N squares, 2 triangles each, centre strike,
 // tau = 0.4 h_el / c_S): one product with the linear model's K in each storage
 // (scalar CSR, plain 3x3 blocks = the memory floor of an assembled K, shared
-// stencil rows), and the Newmark step of the linear model (K u~ plus the CG
-// solve). Wall times are the best of the repetitions (the machine is shared:
-// the best is the least disturbed), CPU times the mean over all threads.
-// Usage: membrane_kernels N THREADS [STEPS]
+// stencil rows), the Newmark step of the linear model (K u~ plus the CG
+// solve), and one explicit (central-difference) step of the large-deflection
+// fabric model and of the linear model, with their ratios to the SpMVs.
+// Wall times are the best of the repetitions (the machine is shared: the
+// best is the least disturbed), CPU times the mean over all threads.
+// Usage: membrane_kernels N THREADS [STEPS] [all|explicit]
+//   explicit: only the SpMV floor and the explicit steps (large meshes)
 #include "membrane/integrators/block_matrix.hpp"
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/io/case_file.hpp"
@@ -18,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <string>
 #include <vector>
@@ -36,9 +40,14 @@ double wallSeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+/// Best wall and mean CPU time of one call (s).
+struct Timing {
+  double best = 0, cpu = 0;
+};
+
 /// Runs @p fn @p reps times; prints best and median wall, mean CPU (ms).
 template <class F>
-void timeIt(const char* what, int reps, F&& fn) {
+Timing timeIt(const char* what, int reps, F&& fn) {
   fn(); // warm caches and first-touch pages
   std::vector<double> wall;
   const double c0 = cpuSeconds();
@@ -51,6 +60,12 @@ void timeIt(const char* what, int reps, F&& fn) {
   std::sort(wall.begin(), wall.end());
   std::printf("%-34s best %8.3f ms  median %8.3f ms  cpu %8.3f ms\n", what, 1e3 * wall.front(),
               1e3 * wall[wall.size() / 2], 1e3 * cpu);
+  return {wall.front(), cpu};
+}
+
+/// Prints a / b for the best wall and the CPU times.
+void ratio(const char* what, Timing a, Timing b) {
+  std::printf("  %-32s %.2f (best wall)  %.2f (cpu)\n", what, a.best / b.best, a.cpu / b.cpu);
 }
 
 } // namespace
@@ -59,6 +74,7 @@ int main(int argc, char** argv) {
   const int N = argc > 1 ? std::atoi(argv[1]) : 300;
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const int steps = argc > 3 ? std::atoi(argv[3]) : 40;
+  const bool all = !(argc > 4 && std::strcmp(argv[4], "explicit") == 0);
   omp_set_num_threads(threads);
   const double c = std::sqrt(1e9 / (2 * 1.3) / 1000), dt = 0.4 / N / c;
   const std::vector<std::string> set{"mesh.nx=" + std::to_string(N),
@@ -69,28 +85,57 @@ int main(int argc, char** argv) {
   std::printf("N = %d (%d triangles, %d DOF), threads = %d\n", N,
               static_cast<int>(model.mesh.triangles.size()), model.numDofs(), threads);
 
-  membrane::Simulation sim(model);
-  const membrane::SparseMatrix& K = sim.K();
+  const membrane::SparseMatrix K = membrane::assemble(model.mesh, model.sections, false).K;
   Eigen::VectorXd x = Eigen::VectorXd::Random(K.rows()), y(K.rows());
   const int reps = 30;
-  timeIt("SpMV K, scalar CSR", reps, [&] { membrane::multiply(K, x, y); });
-  const membrane::BlockMatrix plain(K, false), shared(K);
-  timeIt("SpMV K, 3x3 blocks (floor)", reps, [&] { plain.multiply(x, y); });
+  const membrane::BlockMatrix plain(K, false);
+  const Timing floor = timeIt("SpMV K, 3x3 blocks (floor)", reps, [&] { plain.multiply(x, y); });
+  const membrane::BlockMatrix shared(K);
   std::printf("  (shared stencil rows: %d stored rows)\n", shared.sharedRows());
-  timeIt("SpMV K, shared rows, interleaved", reps, [&] { shared.multiply(x, y); });
-  Eigen::VectorXd xs = x, ys = y;
-  timeIt("SpMV K, shared rows, planar", reps, [&] {
+  const Timing stencil =
+      timeIt("SpMV K, shared rows, interleaved", reps, [&] { shared.multiply(x, y); });
+  if (all) {
+    timeIt("SpMV K, scalar CSR", reps, [&] { membrane::multiply(K, x, y); });
+    Eigen::VectorXd xs = x, ys = y;
+    timeIt("SpMV K, shared rows, planar", reps, [&] {
 #pragma omp parallel
-    {
-      const int n = shared.nodes();
-      const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-      shared.multiplyPlanar(xs.data(), ys.data(), n * t / nt, n * (t + 1) / nt);
-    }
-  });
-  const membrane::SolverStats st0 = sim.integrator().stats();
-  timeIt("Newmark step (CG)", steps, [&] { sim.step(); });
-  const membrane::SolverStats st1 = sim.integrator().stats();
-  std::printf("  (CG iterations per step: %.1f)\n",
-              double(st1.iterations - st0.iterations) / double(st1.solves - st0.solves));
+      {
+        const int n = shared.nodes();
+        const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+        shared.multiplyPlanar(xs.data(), ys.data(), n * t / nt, n * (t + 1) / nt);
+      }
+    });
+    membrane::Simulation sim(model);
+    const membrane::SolverStats st0 = sim.integrator().stats();
+    timeIt("Newmark step (CG)", steps, [&] { sim.step(); });
+    const membrane::SolverStats st1 = sim.integrator().stats();
+    std::printf("  (CG iterations per step: %.1f)\n",
+                double(st1.iterations - st0.iterations) / double(st1.solves - st0.solves));
+  }
+
+  // Explicit steps (dt = safety x stable step), the strike keeps them moving.
+  membrane::Model fabric = model;
+  fabric.kind = membrane::ModelKind::LargeDeflection;
+  fabric.time.integrator = membrane::IntegratorKind::Explicit;
+  fabric.time.dt = 0;
+  {
+    membrane::Simulation sim(fabric);
+    Eigen::VectorXd f;
+    const Timing force =
+        timeIt("fabric internal force", reps, [&] { sim.structure().internalForce(sim.u(), f); });
+    const Timing step = timeIt("explicit step, large deflection", steps, [&] { sim.step(); });
+    ratio("large-deflection step / floor", step, floor);
+    ratio("large-deflection step / stencil", step, stencil);
+    ratio("internal force / floor", force, floor);
+  }
+  if (all) {
+    membrane::Model linear = fabric;
+    linear.kind = membrane::ModelKind::Linear;
+    linear.time.lumped = true;
+    membrane::Simulation sim(linear);
+    const Timing step = timeIt("explicit step, linear", steps, [&] { sim.step(); });
+    ratio("linear step / floor", step, floor);
+    ratio("linear step / stencil", step, stencil);
+  }
   return 0;
 }

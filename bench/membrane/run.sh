@@ -1,11 +1,18 @@
 #!/usr/bin/env bash
-# Membrane benchmark (issue 4): structured N x N squares (2 triangles each),
-# isotropic E = 1 GPa, nu = 0.3, rho = 1000, h = 1 mm, fixed edges, centre
-# strike at 1 m/s, tau = 0.4 h_el / c_S, STEPS steps (default 200).
-# Prints assembly, set-up and per-step times, CG iterations and peak memory
-# for 1 and 2 threads, and at N <= 300 the largest difference of the probe
-# histories between the CG run and the factorized (CHOLMOD) solve.
-# Usage: bash bench/membrane/run.sh [BUILD_DIR]   (env: SIZES="100 300 800" STEPS=200)
+# Membrane benchmark (issues 4 and 9): structured N x N squares (2 triangles
+# each), isotropic E = 1 GPa, nu = 0.3, rho = 1000, h = 1 mm, fixed edges,
+# centre strike at 1 m/s, tau = 0.4 h_el / c_S, STEPS steps (default 200).
+# 1. `membrane run` end to end: assembly, set-up and per-step times, CG
+#    iterations and peak memory for 1 and 2 threads, and at N <= 300 the
+#    largest difference of the probe histories between the CG run and the
+#    factorized (CHOLMOD) solve.
+# 2. membrane_kernels (bench/membrane/kernels.cpp) at KERNEL_SIZES: one
+#    product with K in each storage (the 3x3-block one is the memory floor
+#    of a step) and the Newmark step, best and median wall and CPU per call.
+# The machine may be shared: compare against a baseline run in the same
+# session (alternate the binaries), not against old figures.
+# Usage: bash bench/membrane/run.sh [BUILD_DIR]
+#   env: SIZES="100 300 800" STEPS=200 KERNEL_SIZES="300"
 set -euo pipefail
 BUILD="${1:-build}"
 cd "$(dirname "$0")/../.."
@@ -13,6 +20,7 @@ BIN="$BUILD/bin/membrane"
 CASE=bench/membrane/bench.toml
 SIZES="${SIZES:-100 300 800}"
 STEPS="${STEPS:-200}"
+KERNEL_SIZES="${KERNEL_SIZES:-300}"
 OUT="$(mktemp -d /tmp/lamina-bench-membrane.XXXXXX)"
 LIB="$OUT/empty-library.toml"   # inline material: never touch the user's library
 trap 'rm -rf "$OUT"' EXIT
@@ -53,3 +61,11 @@ for n in $SIZES; do
     compare "chol-$n" "cg-$n-1"
   fi
 done
+if [ -x "$BUILD/bin/membrane_kernels" ]; then
+  for n in $KERNEL_SIZES; do
+    for th in 1 2; do
+      echo "--- kernels N=$n threads=$th (load $(cut -d' ' -f1-3 /proc/loadavg))"
+      OMP_NUM_THREADS=$th "$BUILD/bin/membrane_kernels" "$n" "$th" 40
+    done
+  done
+fi

@@ -5,12 +5,23 @@
 
 namespace lamina::membrane {
 
+namespace {
+/// Below this many DOFs the vector loops of a step stay on one thread.
+constexpr int kParallelDofs = 30000;
+} // namespace
+
 CentralDifference::CentralDifference(const Model& model, const Structure& structure,
                                      const LoadSet& loads, const ConstrainedDofs& cons, double dt,
                                      double damping)
     : model_(model), structure_(structure), loads_(loads), cons_(cons), dt_(dt), damping_(damping) {
   LAMINA_CHECK(dt > 0 && std::isfinite(dt), "explicit time step must be > 0");
   LAMINA_CHECK(damping >= 0, "damping must be >= 0");
+  // Row sums of the gradient inertia M_D are zero (B of a translation is 0):
+  // lumping would drop micro-inertia silently
+  if (structure.microMass())
+    throw Error("micro-inertia (a section with a dispersion zeta^2 D) needs the Newmark "
+                "scheme: its gradient mass cannot be lumped; use time.integrator = \"newmark\" "
+                "or micro_inertia = false in the section");
   const int ndof = structure.numDofs();
   // Lumped mass: row sums (the diagonal itself for a lumped model).
   const SparseMatrix& M = structure.mass();
@@ -47,18 +58,31 @@ void CentralDifference::evaluate(double t, const Eigen::VectorXd& u, const Eigen
 }
 
 void CentralDifference::accelerate(const StateForces& f, Eigen::VectorXd& a) const {
-  Eigen::VectorXd total = f.external + f.drag - f.internal;
-  if (f.spring.size())
-    total += f.spring;
-  if (f.damping.size())
-    total += f.damping;
-  a = minv_.cwiseProduct(total);
+  // a = m^-1 (F_ext + F_drag + F_s + F_damp - f_int) in one threaded pass.
+  const int n = structure_.numDofs();
+  a.resize(n);
+  const double *ext = f.external.data(), *drag = f.drag.data(), *fi = f.internal.data();
+  const double* spring = f.spring.size() ? f.spring.data() : nullptr;
+  const double* damp = f.damping.size() ? f.damping.data() : nullptr;
+  const double* minv = minv_.data();
+  double* ap = a.data();
+  auto total = [&](int i) {
+    double t = ext[i] + drag[i] - fi[i];
+    if (spring)
+      t += spring[i];
+    if (damp)
+      t += damp[i];
+    return t;
+  };
+#pragma omp parallel for schedule(static) if (n > kParallelDofs)
+  for (int i = 0; i < n; ++i)
+    ap[i] = minv[i] * total(i);
   for (size_t k = 0; k < model_.rigid.size(); ++k) {
     double sum = 0;
     for (int d : model_.rigid[k].dofs)
-      sum += total[d];
+      sum += total(d);
     for (int d : model_.rigid[k].dofs)
-      a[d] = sum / rigid_mass_[k];
+      ap[d] = sum / rigid_mass_[k];
   }
 }
 
@@ -86,26 +110,55 @@ void CentralDifference::init(State& s) {
 }
 
 void CentralDifference::step(State& s) {
+  // The vector work is two threaded passes around the force evaluation.
   const double t1 = static_cast<double>(s.step + 1) * dt_;
   const double th = (static_cast<double>(s.step) + 0.5) * dt_;
-  vh_ = s.v + (0.5 * dt_) * s.a;
-  for (size_t k = 0; k < cons_.size(); ++k)
-    vh_[cons_.dofs()[k]] = cons_.velocity(k, th);
-  u1_ = s.u + dt_ * vh_;
+  const int n = structure_.numDofs();
+  const double h = 0.5 * dt_, dt = dt_;
+  vh_.resize(n);
+  u1_.resize(n);
+  {
+    const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data();
+    double *vh = vh_.data(), *u1 = u1_.data();
+#pragma omp parallel for schedule(static) if (n > kParallelDofs)
+    for (int i = 0; i < n; ++i) {
+      vh[i] = v[i] + h * a[i];
+      u1[i] = u[i] + dt * vh[i];
+    }
+  }
+  for (size_t k = 0; k < cons_.size(); ++k) {
+    const int d = cons_.dofs()[k];
+    vh_[d] = cons_.velocity(k, th);
+    u1_[d] = s.u[d] + dt * vh_[d];
+  }
   StateForces& next = prev_; // a_{n-1}'s forces are no longer needed
   evaluate(t1, u1_, vh_, next);
   accelerate(next, a1_);
-  v1_ = vh_ + (0.5 * dt_) * a1_;
+  v1_.resize(n);
+  du_.resize(n);
+  int non_finite = 0;
+  {
+    const double *u = s.u.data(), *vh = vh_.data(), *u1 = u1_.data(), *a1 = a1_.data();
+    const char* fixed = cons_.mask().data();
+    double *v1 = v1_.data(), *du = du_.data();
+#pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
+    for (int i = 0; i < n; ++i) {
+      v1[i] = vh[i] + h * a1[i];
+      du[i] = u1[i] - u[i];
+      non_finite +=
+          !std::isfinite(u1[i]) || (!fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i])));
+    }
+  }
   for (size_t k = 0; k < cons_.size(); ++k) {
     const int d = cons_.dofs()[k];
     v1_[d] = cons_.velocity(k, t1);
     a1_[d] = (v1_[d] - s.v[d]) / dt_;
+    non_finite += !std::isfinite(v1_[d]) || !std::isfinite(a1_[d]);
   }
-  if (!u1_.allFinite() || !v1_.allFinite() || !a1_.allFinite())
+  if (non_finite > 0)
     throwNonFinite(model_.mesh, s, t1, u1_, v1_, a1_,
                    "; the explicit step may exceed the stable step");
   reactions(a1_, next);
-  du_ = u1_ - s.u;
   std::swap(s.u, u1_);
   std::swap(s.v, v1_);
   std::swap(s.a, a1_);

@@ -17,7 +17,8 @@ namespace lamina::membrane {
 
 /// Energies and works at one time (J).
 struct Energy {
-  double kinetic = 0;       ///< v.Mv / 2
+  double kinetic = 0;       ///< v.Mv / 2 (M includes M_D: micro-kinetic included)
+  double micro_kinetic = 0; ///< v.M_D v / 2, the micro-inertia part of kinetic
   double strain = 0;        ///< u.Ku / 2
   double external_work = 0; ///< work of the loads since t = 0
   double reaction_work = 0; ///< work of the constraint reactions since t = 0

@@ -9,6 +9,9 @@
 namespace lamina::membrane {
 
 namespace {
+/// Below this many DOFs the vector loops of a step stay on one thread.
+constexpr int kParallelDofs = 30000;
+
 /// Rows @p rows of @p A as an |rows| x cols matrix.
 SparseMatrix extractRows(const SparseMatrix& A, const std::vector<int>& rows) {
   SparseMatrix R(static_cast<Eigen::Index>(rows.size()), A.cols());
@@ -145,14 +148,36 @@ void Newmark::step(State& s) {
   const double t1 = static_cast<double>(s.step + 1) * tau;
   const bool has_drag = loads_.hasDrag();
 
-  // Predictors of eq. (30).
-  ut_ = s.u + tau * s.v + (0.5 * tau * tau * (1 - ts.beta2)) * s.a;
-  vt_ = s.v + (tau * (1 - ts.beta1)) * s.a;
+  // Predictors of eq. (30), and the CG start: linear extrapolation of the
+  // acceleration history (one threaded pass; these vector loops are a
+  // fifth of a step at 300 x 300 when run one after the other on one thread).
+  const int n = structure_.numDofs();
+  const double cu = 0.5 * tau * tau * (1 - ts.beta2), cv = tau * (1 - ts.beta1);
+  ut_.resize(n);
+  vt_.resize(n);
+  a1_.resize(n);
+  {
+    const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data(), *ap = a_prev_.data();
+    double *ut = ut_.data(), *vt = vt_.data(), *a1 = a1_.data();
+#pragma omp parallel for schedule(static) if (n > kParallelDofs)
+    for (int i = 0; i < n; ++i) {
+      ut[i] = u[i] + tau * v[i] + cu * a[i];
+      vt[i] = v[i] + cv * a[i];
+      a1[i] = 2 * a[i] - ap[i];
+    }
+  }
   if (loads_.hasExternal())
     loads_.external(t1, ut_, next_.external);
   Kb_.multiply(ut_, ku_);
   // Right-hand side without drag: (1+alpha)(F1 - K u~) - alpha (F_n + Fd_n - K u_n).
-  b_ = (1 + alpha) * (next_.external - ku_);
+  b_.resize(n);
+  {
+    const double *f = next_.external.data(), *ku = ku_.data();
+    double* b = b_.data();
+#pragma omp parallel for schedule(static) if (n > kParallelDofs)
+    for (int i = 0; i < n; ++i)
+      b[i] = (1 + alpha) * (f[i] - ku[i]);
+  }
   if (alpha != 0) {
     multiply(K_, s.u, tmp_);
     b_ -= alpha * (cur_.external + cur_.drag - tmp_);
@@ -168,12 +193,13 @@ void Newmark::step(State& s) {
   if (moving_acc)
     b_ -= Afc_ * ac_;
 
-  // Warm start: linear extrapolation of the acceleration history.
-  a1_ = 2 * s.a - a_prev_;
   last_iterations_ = 0;
   const int passes = has_drag ? ts.drag_iterations : 1;
   for (int pass = 0; pass < passes; ++pass) {
-    tmp_ = b_;
+    if (has_drag)
+      tmp_ = b_;
+    else
+      std::swap(tmp_, b_); // b_ is not needed again
     if (has_drag) {
       v1_ = vt_ + (ts.beta1 * tau) * a1_;
       loads_.drag(ut_, v1_, next_.drag);
@@ -199,18 +225,32 @@ void Newmark::step(State& s) {
     v1_ = vt_ + (ts.beta1 * tau) * a1_;
     loads_.drag(ut_, v1_, next_.drag);
   }
-  u1_ = ut_ + c_ * a1_;
-  v1_ = vt_ + (ts.beta1 * tau) * a1_;
-
+  // u_{n+1}, v_{n+1} and the increment in one threaded pass, counting
+  // non-finite values on the way.
+  u1_.resize(n);
+  v1_.resize(n);
+  du_.resize(n);
+  int non_finite = 0;
+  {
+    const double cw = ts.beta1 * tau, c = c_;
+    const double *ut = ut_.data(), *vt = vt_.data(), *a1 = a1_.data(), *u = s.u.data();
+    double *u1 = u1_.data(), *v1 = v1_.data(), *du = du_.data();
+#pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
+    for (int i = 0; i < n; ++i) {
+      u1[i] = ut[i] + c * a1[i];
+      v1[i] = vt[i] + cw * a1[i];
+      du[i] = u1[i] - u[i];
+      non_finite += !std::isfinite(u1[i]) || !std::isfinite(v1[i]) || !std::isfinite(a1[i]);
+    }
+  }
   // Non-finite state: stop before committing it.
-  if (!u1_.allFinite() || !v1_.allFinite() || !a1_.allFinite())
+  if (non_finite > 0)
     throwNonFinite(model_.mesh, s, t1, u1_, v1_, a1_);
 
-  // Commit.
-  du_ = u1_ - s.u;
-  a_prev_ = s.a;
+  // Commit (a_{n-1} <- a_n, a_n <- a_{n+1} by swaps).
   std::swap(s.u, u1_);
   std::swap(s.v, v1_);
+  std::swap(a_prev_, s.a);
   std::swap(s.a, a1_);
   s.t = t1;
   ++s.step;

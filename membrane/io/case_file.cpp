@@ -10,6 +10,7 @@
 #include "materials/catalog.hpp"
 #include "materials/layup.hpp"
 #include "materials/library.hpp"
+#include "membrane/loads/blast_pressure.hpp"
 #include "membrane/loads/element_pressure.hpp"
 #include "membrane/loads/follower_drag.hpp"
 
@@ -239,6 +240,33 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
   r.fail("type", "unknown mesh type '" + type + "' (rectangle, gmsh)");
 }
 
+/// Micro-inertia keys of a section: an inline `dispersion` (zeta^2 D, 6x6,
+/// kg/m) for inline materials, and `micro_inertia = false` to drop the
+/// material's (on by default).
+void readMicroInertia(const core::TableReader& r, bool named, Section& s) {
+  if (r.has("dispersion")) {
+    if (named)
+      r.fail("dispersion", "only with an inline material (E or C): a named material brings its "
+                           "own dispersion from the library");
+    const auto d = r.getMatrix("dispersion");
+    bool ok = d.size() == 6;
+    for (const auto& row : d)
+      ok = ok && row.size() == 6;
+    if (!ok)
+      r.fail("dispersion", "expected 6 rows of 6 (zeta^2 D, kg/m, lamina order)");
+    for (int i = 0; i < 6; ++i)
+      for (int j = 0; j < 6; ++j)
+        s.dispersion(i, j) = d[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    try {
+      materials::validateDispersion(s.dispersion, "section");
+    } catch (const Error& e) {
+      r.fail("dispersion", e.message());
+    }
+  }
+  if (!r.getBool("micro_inertia", true))
+    s.dispersion.setZero();
+}
+
 /// Reads one [[section]]: material by name, inline isotropic/anisotropic, or plies.
 /// The large-deflection keys of a [[section]] (material axis, pre-stress,
 /// tension_only, failure thresholds); an error under the linear model.
@@ -290,6 +318,8 @@ Section readSection(const core::TableReader& r, materials::MaterialSource& res, 
     const auto m = lookupMaterial(res, s.material, r, "material");
     s.D = m.C.matrix();
     s.density = m.density;
+    if (m.dispersion)
+      s.dispersion = *m.dispersion;
     default_thickness = m.thickness;
   } else if (iso) {
     const double E = r.getDouble("E"), nu = r.getDouble("nu");
@@ -326,9 +356,15 @@ Section readSection(const core::TableReader& r, materials::MaterialSource& res, 
     }
     s.D = m.C.matrix();
     s.density = m.density;
+    if (m.dispersion)
+      s.dispersion = *m.dispersion;
     default_thickness = m.thickness;
     s.material = "layup of " + std::to_string(plies.size()) + " plies";
   }
+  readMicroInertia(r, by_name || layup, s);
+  if (kind == ModelKind::LargeDeflection && s.hasMicroInertia())
+    r.failHere("the material has micro-inertia (a dispersion), which only the linear model "
+               "carries: set micro_inertia = false for the large-deflection model");
   if (r.has("thickness") || !default_thickness) {
     s.thickness = r.getDouble("thickness");
     if (!(s.thickness > 0))
@@ -646,6 +682,55 @@ void readLoads(const core::TableReader& root, Model& model) {
 }
 
 /// [[drag]] (issue 5): on surface regions.
+/// [[blast]]: an air blast from a charge (Kingery-Bulmash, Friedlander,
+/// angle of incidence) or a user pressure history (CSV), acting as a
+/// follower pressure on the selected elements (all by default).
+void readBlasts(const core::TableReader& root, Model& model, const std::filesystem::path& path) {
+  for (const auto& r : root.tableArray("blast")) {
+    if (model.kind != ModelKind::LargeDeflection)
+      r.failHere("[[blast]] needs model = \"large_deflection\" (a follower load)");
+    const bool selected =
+        r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all");
+    const auto elems = selectElements(
+        model.mesh, selected ? readSelector(r) : Selector{"all", "", {}, {}, "all"}, r);
+    const std::string name =
+        r.getString("name", "blast" + std::to_string(model.surface_loads.size()));
+    if (r.has("table")) {
+      if (r.has("charge"))
+        r.fail("table", "give either charge (a Kingery-Bulmash blast) or table (a pressure "
+                        "history), not both");
+      const auto csv = path.parent_path() / r.getString("table");
+      model.surface_loads.push_back(
+          std::make_shared<BlastPressure>(name, elems, PressureTable::readCsv(csv.string())));
+      continue;
+    }
+    BlastCharge c;
+    c.mass = r.getDouble("charge");
+    if (!(c.mass > 0) || !std::isfinite(c.mass))
+      r.fail("charge", "the charge must be a positive mass (kg)");
+    c.tnt_equivalence = r.getDouble("tnt_equivalence", 1.0);
+    if (!(c.tnt_equivalence > 0) || !std::isfinite(c.tnt_equivalence))
+      r.fail("tnt_equivalence", "must be > 0");
+    const auto pos = r.getDoubleArray("position");
+    if (pos.size() != 3)
+      r.fail("position", "expected [x, y, z] (m)");
+    c.position = Eigen::Vector3d(pos[0], pos[1], pos[2]);
+    const std::string burst = r.getString("burst", "hemispherical");
+    if (burst != "hemispherical" && burst != "spherical")
+      r.fail("burst", "unknown burst '" + burst + "' (expected hemispherical or spherical)");
+    c.burst = parseBurst(burst);
+    const std::string range = r.getString("out_of_range", "refuse");
+    if (range != "refuse" && range != "clamp")
+      r.fail("out_of_range", "expected \"refuse\" or \"clamp\"");
+    c.policy = range == "clamp" ? OutOfRange::Clamp : OutOfRange::Refuse;
+    try {
+      model.surface_loads.push_back(std::make_shared<BlastPressure>(name, elems, model.mesh, c));
+    } catch (const Error& e) {
+      r.fail("charge", e.message());
+    }
+  }
+}
+
 void readDrags(const core::TableReader& root, Model& model) {
   const Mesh& mesh = model.mesh;
   const int n = mesh.numNodes();
@@ -842,6 +927,7 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   readTimeAndOutput(root, model);
   std::vector<int> owner = readConstraints(root, model);
   readLoads(root, model);
+  readBlasts(root, model, path);
   readDrags(root, model);
   if (model.compare_without_drag && model.drags.empty() && model.surface_loads.empty())
     root.fail("compare_without_drag", "needs at least one [[drag]] table");

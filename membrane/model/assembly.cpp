@@ -42,6 +42,11 @@ Matrix9 elementMass(const Mesh& mesh, int e, const Section& s, bool lumped) {
   return Me;
 }
 
+Matrix9 elementMicroMass(const Mesh& mesh, int e, const Section& s) {
+  const Matrix69 B = strainMatrix(mesh, e);
+  return s.thickness * mesh.area(e) * (B.transpose() * s.dispersion * B);
+}
+
 namespace {
 /// Builds the node-block sparsity pattern (node adjacency incl. self) as CSR.
 void nodeGraph(const Mesh& mesh, std::vector<int>& start, std::vector<int>& cols) {
@@ -92,16 +97,25 @@ GlobalMatrices assemble(const Mesh& mesh, const std::vector<Section>& sections, 
   GlobalMatrices g;
   g.K = blockPattern(n, start, cols);
   g.M = g.K;
+  bool micro = false;
+  for (const Section& s : sections)
+    micro = micro || s.hasMicroInertia();
+  if (micro)
+    g.MD = g.K;
   const int ne = mesh.numElements();
   // Scatter directly into the fixed pattern; atomics keep the element loop parallel.
   double* kv = g.K.valuePtr();
   double* mv = g.M.valuePtr();
+  double* dv = micro ? g.MD.valuePtr() : nullptr;
   const int* outer = g.K.outerIndexPtr();
 #pragma omp parallel for schedule(static) if (ne > 20000)
   for (int e = 0; e < ne; ++e) {
     const Section& s = sections[mesh.region_of[e]];
     const Matrix9 Ke = elementStiffness(mesh, e, s);
-    const Matrix9 Me = elementMass(mesh, e, s, lumped);
+    Matrix9 Me = elementMass(mesh, e, s, lumped);
+    const bool has_md = dv && s.hasMicroInertia();
+    const Matrix9 MDe = has_md ? elementMicroMass(mesh, e, s) : Matrix9::Zero();
+    Me += MDe;
     const auto& t = mesh.triangles[e];
     for (int a = 0; a < 3; ++a) {
       const int i = t[a];
@@ -117,6 +131,10 @@ GlobalMatrices assemble(const Mesh& mesh, const std::vector<Section>& sections, 
             kv[base + d] += Ke(3 * a + c, 3 * b + d);
 #pragma omp atomic
             mv[base + d] += Me(3 * a + c, 3 * b + d);
+            if (has_md) {
+#pragma omp atomic
+              dv[base + d] += MDe(3 * a + c, 3 * b + d);
+            }
           }
         }
       }

@@ -28,15 +28,21 @@ Matrix69 strainMatrix(const Mesh& mesh, int e);
 Matrix9 elementStiffness(const Mesh& mesh, int e, const Section& s);
 /// Consistent Me = rho h int N^T N (eq. 24): rho h A / 12 (1 + delta_ij) per component.
 Matrix9 elementMass(const Mesh& mesh, int e, const Section& s, bool lumped);
+/// Gradient inertia of micro-inertia, M_D,e = h A B^T (zeta^2 D) B (constant
+/// strain): the kinetic energy of the strain rate, eps'.(zeta^2 D) eps'/2.
+Matrix9 elementMicroMass(const Mesh& mesh, int e, const Section& s);
 
 /// Global K and M (eqs. 26-27) with the same sparsity pattern (3x3 node blocks).
 struct GlobalMatrices {
-  SparseMatrix K; ///< stiffness, N/m
-  SparseMatrix M; ///< mass, kg
+  SparseMatrix K;  ///< stiffness, N/m
+  SparseMatrix M;  ///< mass, kg, including M_D
+  SparseMatrix MD; ///< the micro-inertia part M_D of M (kg); 0 x 0 when no section has one
 };
 
 /// Assembles K and M over all triangles; section of triangle e is
-/// sections[mesh.region_of[e]]. Uses OpenMP over elements when available.
+/// sections[mesh.region_of[e]]. Sections with micro-inertia add M_D to M
+/// (consistent even with a lumped rho-mass: M_D couples neighbours by
+/// nature). Uses OpenMP over elements when available.
 GlobalMatrices assemble(const Mesh& mesh, const std::vector<Section>& sections, bool lumped);
 
 /// Tributary area of each node: sum over its triangles of A_e / 3 (m^2).

@@ -40,6 +40,22 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
     for (int a = 0; a < 3; ++a)
       node_entry_[fill[mesh.triangles[e][a]]++] = 3 * e + a;
   fe_.assign(9 * static_cast<size_t>(ne), 0.0);
+  packed_.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const FabricElement& el = elements_[e];
+    const int r = mesh.region_of[e];
+    Packed& p = packed_[e];
+    for (int a = 0; a < 3; ++a) {
+      p.node[a] = el.nodes[a];
+      p.dN[2 * a] = el.dN[a].x();
+      p.dN[2 * a + 1] = el.dN[a].y();
+    }
+    p.region = model.sections[r].tension_only ? -1 - r : r;
+    p.hA = model.sections[r].thickness * el.area0;
+  }
+  x0_.resize(3 * static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i)
+    Eigen::Map<Eigen::Vector3d>(x0_.data() + 3 * static_cast<size_t>(i)) = mesh.point(i);
   // Lumped mass: rho h A0 / 3 per node, plus the point masses.
   Eigen::VectorXd m = Eigen::VectorXd::Zero(n);
   for (int e = 0; e < ne; ++e) {
@@ -73,12 +89,45 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
   // Threads only pay off on large meshes (on small ones their start-up dominates).
 #pragma omp parallel if (ne > kParallelElements)
   {
+    // fabric_element.hpp written out for the common (not tension-only)
+    // element, from the packed data: F = sum x_a dN_a^T, E = (F^T F - I)/2,
+    // S = C_ps E + S0, f_a = h A0 F S dN_a. Tension-only regions take the
+    // general path (their stress needs the principal decomposition).
+    const double* x0 = x0_.data();
+    const double* up = u.data();
 #pragma omp for schedule(static)
     for (int e = 0; e < ne; ++e) {
-      const FabricStress st = stress(e, u);
-      const Eigen::Matrix3d fa =
-          fabricForces(elements_[e], st, model_.sections[model_.mesh.region_of[e]].thickness);
-      Eigen::Map<Eigen::Matrix3d>(fe + 9 * static_cast<size_t>(e)) = fa;
+      const Packed& p = packed_[e];
+      double* out = fe + 9 * static_cast<size_t>(e);
+      if (p.region < 0) {
+        const FabricStress st = stress(e, u);
+        const Eigen::Matrix3d fa =
+            fabricForces(elements_[e], st, model_.sections[-1 - p.region].thickness);
+        Eigen::Map<Eigen::Matrix3d>{out} = fa;
+        continue;
+      }
+      double F0[3] = {0, 0, 0}, F1[3] = {0, 0, 0}; // columns of F
+      for (int a = 0; a < 3; ++a) {
+        const size_t k = 3 * static_cast<size_t>(p.node[a]);
+        for (int c = 0; c < 3; ++c) {
+          const double x = x0[k + c] + up[k + c];
+          F0[c] += x * p.dN[2 * a];
+          F1[c] += x * p.dN[2 * a + 1];
+        }
+      }
+      const double c00 = F0[0] * F0[0] + F0[1] * F0[1] + F0[2] * F0[2];
+      const double c11 = F1[0] * F1[0] + F1[1] * F1[1] + F1[2] * F1[2];
+      const double c01 = F0[0] * F1[0] + F0[1] * F1[1] + F0[2] * F1[2];
+      const Eigen::Vector3d E(0.5 * (c00 - 1), 0.5 * (c11 - 1), c01);
+      const Eigen::Vector3d S = cps_[p.region] * E + s0_[p.region];
+      double P0[3], P1[3]; // h A0 F S, columns
+      for (int c = 0; c < 3; ++c) {
+        P0[c] = p.hA * (F0[c] * S[0] + F1[c] * S[2]);
+        P1[c] = p.hA * (F0[c] * S[2] + F1[c] * S[1]);
+      }
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c)
+          out[3 * a + c] = P0[c] * p.dN[2 * a] + P1[c] * p.dN[2 * a + 1];
     }
 #pragma omp single
     f.resize(3 * n);

@@ -51,6 +51,16 @@ private:
   std::vector<int> node_start_;      // node -> (element, corner) list, CSR
   std::vector<int> node_entry_;      // 3 * element + corner
   mutable std::vector<double> fe_;   // element forces, 9 per element (scratch)
+  /// What the internal-force loop reads per element, packed in one line of
+  /// memory (72 bytes instead of the 160 of FabricElement plus the section).
+  struct Packed {
+    int node[3];   ///< node indices
+    int region;    ///< region, or -1 - region for a tension-only one (general path)
+    double dN[6];  ///< dN_a in the element frame: x0, y0, x1, y1, x2, y2 (1/m)
+    double hA = 0; ///< thickness x reference area (m^3)
+  };
+  std::vector<Packed> packed_;
+  std::vector<double> x0_; // reference positions, 3 per node (m)
   SparseMatrix M_;
   bool any_tension_only_ = false, any_threshold_ = false;
   double setup_s_ = 0;

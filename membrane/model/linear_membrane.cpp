@@ -13,6 +13,7 @@ LinearMembrane::LinearMembrane(const Model& model) : model_(model) {
   GlobalMatrices g = assemble(model.mesh, model.sections, model.time.lumped);
   K_ = std::move(g.K);
   M_ = std::move(g.M);
+  MD_ = std::move(g.MD);
   for (const auto& [node, m] : model.point_masses)
     for (int c = 0; c < 3; ++c)
       M_.coeffRef(3 * node + c, 3 * node + c) += m;
@@ -20,7 +21,9 @@ LinearMembrane::LinearMembrane(const Model& model) : model_(model) {
 }
 
 void LinearMembrane::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
-  multiply(K_, u, f);
+  if (!Kb_) // Newmark runs never ask: they use K itself
+    Kb_ = std::make_unique<BlockMatrix>(K_);
+  Kb_->multiply(u, f);
 }
 
 double LinearMembrane::strainEnergy(const Eigen::VectorXd& u) const {

@@ -3,8 +3,11 @@
 /// @brief The membrane paper's model: flat triangles in the x-y plane, small
 /// displacements, f_int = K u with K and M of eqs. (23)-(27).
 
+#include "membrane/integrators/block_matrix.hpp"
 #include "membrane/model/model.hpp"
 #include "membrane/model/structure.hpp"
+
+#include <memory>
 
 namespace lamina::membrane {
 
@@ -15,7 +18,8 @@ public:
   explicit LinearMembrane(const Model& model);
   int numDofs() const override { return static_cast<int>(K_.rows()); }
   const SparseMatrix& mass() const override { return M_; }
-  /// f = K u
+  /// f = K u (3x3-block product; shared stencil rows on uniform meshes).
+  /// The blocks are built on the first call: do not call from two threads.
   void internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   /// @return u.Ku / 2
   double strainEnergy(const Eigen::VectorXd& u) const override;
@@ -24,11 +28,13 @@ public:
   double stableStep() const override;
   /// "strain" and "stress" (6 per element, lamina order; sigma = D eps, eq. 15)
   std::vector<CellField> cellFields(const Eigen::VectorXd& u) const override;
+  const SparseMatrix* microMass() const override { return MD_.rows() ? &MD_ : nullptr; }
   double setupSeconds() const override { return assembly_s_; }
 
 private:
   const Model& model_;
-  SparseMatrix K_, M_;
+  SparseMatrix K_, M_, MD_;
+  mutable std::unique_ptr<BlockMatrix> Kb_; // for internalForce (explicit runs only)
   double assembly_s_ = 0;
 };
 

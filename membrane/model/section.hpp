@@ -28,6 +28,12 @@ struct Section {
                                                                    ///< Green-Lagrange strain
   double failure_stress = std::numeric_limits<double>::infinity(); ///< max principal Cauchy
                                                                    ///< stress (Pa)
+  /// Micro-inertia (GVBO chapter eq. 35, sigma-bar = sigma + zeta^2 D eps''):
+  /// zeta^2 D, 6x6, lamina order, kg/m; zero = none. It adds the gradient
+  /// inertia h A B^T (zeta^2 D) B of each element to the mass.
+  materials::Matrix6 dispersion = materials::Matrix6::Zero();
+  /// @return whether the section carries micro-inertia
+  bool hasMicroInertia() const { return dispersion.cwiseAbs().maxCoeff() > 0; }
 };
 
 } // namespace lamina::membrane

@@ -37,6 +37,9 @@ public:
   virtual void internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const = 0;
   /// @return the strain energy at displacements @p u (J)
   virtual double strainEnergy(const Eigen::VectorXd& u) const = 0;
+  /// @return the micro-inertia part M_D of mass() (already in it), or
+  /// nullptr when no section has micro-inertia
+  virtual const SparseMatrix* microMass() const { return nullptr; }
   /// @return the constant stiffness K (f_int = K u) of a linear model, else nullptr
   virtual const SparseMatrix* stiffness() const { return nullptr; }
   /// @return true when strainEnergy() is a potential of the internal force

@@ -200,3 +200,30 @@ t_end = 1.0e-3
     }
   }
 }
+
+// Material axis per region: the reference vector is projected onto the
+// tilted element, so stretching the element along that projection loads the
+// material's x direction (S11 = C11 E11) and across it the y direction
+// (S22 = C22 E22) of an orthotropic fabric (warp 4x stiffer than weft).
+// The axis vector has a component along the normal, which must not matter.
+TEST(FabricElement, MaterialAxisIsTheProjectedReferenceVector) {
+  const Mesh m = tiltedTriangle();
+  Eigen::Matrix3d cps;
+  cps << 4e6, 0.3e6, 0, 0.3e6, 1e6, 0, 0, 0, 0.2e6;
+  const Eigen::Vector3d n = (m.point(1) - m.point(0)).cross(m.point(2) - m.point(0)).normalized();
+  const Eigen::Vector3d d = (m.point(2) - m.point(0)).normalized(); // an in-plane direction
+  const FabricElement el = makeFabricElement(m, 0, d + 0.7 * n);
+  EXPECT_LT((el.frame.col(0) - d).norm(), 1e-12);
+  // Stretch by 1.1 along d only: x_a = X_a + 0.1 (d . (X_a - X_0)) d.
+  std::array<Eigen::Vector3d, 3> x;
+  for (int a = 0; a < 3; ++a) {
+    const Eigen::Vector3d X = m.point(el.nodes[a]);
+    x[a] = X + 0.1 * d.dot(X - m.point(el.nodes[0])) * d;
+  }
+  const FabricStress st = fabricStress(el, x, cps, Eigen::Vector3d::Zero(), false);
+  const double E11 = 0.5 * (1.1 * 1.1 - 1);
+  EXPECT_NEAR(st.E[0], E11, 1e-12);
+  EXPECT_NEAR(st.E[1], 0.0, 1e-12);
+  EXPECT_NEAR(st.S[0], 4e6 * E11, 1e-6);
+  EXPECT_NEAR(st.S[1], 0.3e6 * E11, 1e-6);
+}

@@ -44,6 +44,18 @@ inline std::string isotropicSquare(int nx, double L = 1.0) {
          "\n[[section]]\nE = 1.0e9\nnu = 0.3\ndensity = 1000.0\nthickness = 1.0e-3\n";
 }
 
+/// TOML of the blast tests' panel: a flat 1 m square of @p nx x nx squares
+/// of the roof's coated vinyl (E = 580 MPa, nu = 0.3, 1280 kg/m^3, 0.53 mm,
+/// tension only) on the large-deflection model, edges clamped, explicit to
+/// @p t_end; the caller adds the [[blast]] table.
+inline std::string blastPanel(int nx, double t_end) {
+  return "model = \"large_deflection\"\n[mesh]\ntype = \"rectangle\"\nLx = 1.0\nnx = " +
+         std::to_string(nx) +
+         "\n[[section]]\nE = 580.0e6\nnu = 0.3\ndensity = 1280.0\nthickness = 0.53e-3\n"
+         "tension_only = true\n[time]\nintegrator = \"explicit\"\nsafety = 0.5\nt_end = " +
+         core::formatExact(t_end) + "\n[[fixed]]\nnodes = \"edges\"\n";
+}
+
 /// Largest |balance| and the energy scale it is compared with.
 struct BalanceTracker {
   double worst = 0; ///< max |E - E0 - W|

@@ -1,8 +1,9 @@
-// The blast as a surface load: a small flat panel facing the charge receives
-// the normally reflected impulse times its area, one seen edge-on only the
+// The blast as a follower pressure (BlastPressure on ElementPressure): a small flat panel facing
+// the charge receives the normally reflected impulse times its area, one seen edge-on only the
 // incident impulse times its area, and the load follows the panel when it
 // turns. A user pressure table gives its impulse times the area.
-#include "membrane/loads/surface_blast.hpp"
+#include "membrane/loads/blast_pressure.hpp"
+#include "membrane/model/mesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,8 +17,8 @@ namespace {
 /// A square panel of side @p s centred at @p c in the plane spanned by the
 /// unit vectors @p e1, @p e2 (normal e1 x e2 by the node order), n x n squares.
 struct Panel {
-  std::vector<Eigen::Vector3d> X0;
-  std::vector<std::array<int, 3>> triangles;
+  Mesh mesh;
+  std::vector<int> elements;
   double area = 0;
 };
 
@@ -25,26 +26,34 @@ Panel panel(const Eigen::Vector3d& c, const Eigen::Vector3d& e1, const Eigen::Ve
             double s, int n) {
   Panel p;
   for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i)
-      p.X0.push_back(c + s * ((i / double(n) - 0.5) * e1 + (j / double(n) - 0.5) * e2));
+    for (int i = 0; i <= n; ++i) {
+      const Eigen::Vector3d x = c + s * ((i / double(n) - 0.5) * e1 + (j / double(n) - 0.5) * e2);
+      p.mesh.nodes.emplace_back(x.x(), x.y());
+      p.mesh.z.push_back(x.z());
+    }
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const int a = j * (n + 1) + i, b = a + 1, d = a + n + 1, e = d + 1;
-      p.triangles.push_back({a, b, e});
-      p.triangles.push_back({a, e, d});
+      p.mesh.triangles.push_back({a, b, e});
+      p.mesh.triangles.push_back({a, e, d});
     }
+  p.mesh.region_of.assign(p.mesh.triangles.size(), 0);
+  p.mesh.regions = {"all"};
+  p.mesh.source = "panel";
+  for (int e = 0; e < p.mesh.numElements(); ++e)
+    p.elements.push_back(e);
   p.area = s * s;
   return p;
 }
 
 /// int F dt over [t0, t1] (trapezoids, @p steps intervals) of the total force.
-Eigen::Vector3d forceImpulse(const SurfaceBlast& load, const Panel& p, const Eigen::VectorXd& u,
+Eigen::Vector3d forceImpulse(const BlastPressure& load, const Panel& p, const Eigen::VectorXd& u,
                              double t0, double t1, int steps) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   const double dt = (t1 - t0) / steps;
   for (int k = 0; k <= steps; ++k) {
     Eigen::VectorXd f = Eigen::VectorXd::Zero(u.size());
-    load.addForces(t0 + k * dt, p.X0, u, f);
+    load.add(t0 + k * dt, p.mesh, u, Eigen::VectorXd(), f);
     Eigen::Vector3d total = Eigen::Vector3d::Zero();
     for (Eigen::Index i = 0; i < f.size(); i += 3)
       total += f.segment<3>(i);
@@ -68,12 +77,12 @@ constexpr double kTol = 3e-3;
 
 } // namespace
 
-TEST(SurfaceBlast, FaceOnPanelReceivesReflectedImpulseTimesArea) {
+TEST(BlastPressure, FaceOnPanelReceivesReflectedImpulseTimesArea) {
   const BlastCharge charge = tenKg();
   const Panel p = panel({0, 0, 5.0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 0.2, 4);
-  const SurfaceBlast load(charge, p.triangles, p.X0);
+  const BlastPressure load("blast", p.elements, p.mesh, charge);
   const BlastParameters bp = kingeryBulmash(10.0, 5.0, Burst::Hemispherical);
-  const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * static_cast<int>(p.X0.size()));
+  const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * p.mesh.numNodes());
   const Eigen::Vector3d J =
       forceImpulse(load, p, u, load.firstArrival() - 1e-5, load.lastEnd() + 1e-5, 20000);
   EXPECT_NEAR(J.z() / (bp.reflected_impulse * p.area), 1.0, kTol); // away from the charge: +z
@@ -81,13 +90,13 @@ TEST(SurfaceBlast, FaceOnPanelReceivesReflectedImpulseTimesArea) {
   EXPECT_NEAR(J.y(), 0.0, 1e-9 * std::abs(J.z()));
 }
 
-TEST(SurfaceBlast, EdgeOnPanelReceivesIncidentImpulseOnly) {
+TEST(BlastPressure, EdgeOnPanelReceivesIncidentImpulseOnly) {
   const BlastCharge charge = tenKg();
   // Plane x = 0, containing the direction to the charge: cos a = 0.
   const Panel p = panel({0, 0, 5.0}, Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(), 0.2, 4);
-  const SurfaceBlast load(charge, p.triangles, p.X0);
+  const BlastPressure load("blast", p.elements, p.mesh, charge);
   const BlastParameters bp = kingeryBulmash(10.0, 5.0, Burst::Hemispherical);
-  const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * static_cast<int>(p.X0.size()));
+  const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * p.mesh.numNodes());
   const Eigen::Vector3d J =
       forceImpulse(load, p, u, load.firstArrival() - 1e-5, load.lastEnd() + 1e-5, 20000);
   EXPECT_NEAR(std::abs(J.x()) / (bp.incident_impulse * p.area), 1.0, kTol);
@@ -97,15 +106,15 @@ TEST(SurfaceBlast, EdgeOnPanelReceivesIncidentImpulseOnly) {
 // The load follows the surface: the face-on panel turned by 90 degrees about
 // its own centre line (through u, the reference stays face-on) is edge-on
 // and receives the incident impulse along its new normal.
-TEST(SurfaceBlast, LoadFollowsTheTurnedPanel) {
+TEST(BlastPressure, LoadFollowsTheTurnedPanel) {
   const BlastCharge charge = tenKg();
   const Panel p = panel({0, 0, 5.0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 0.2, 4);
-  const SurfaceBlast load(charge, p.triangles, p.X0);
-  Eigen::VectorXd u(3 * static_cast<int>(p.X0.size()));
-  for (std::size_t i = 0; i < p.X0.size(); ++i) { // x -> z about the line x = 0, z = 5
-    const Eigen::Vector3d r = p.X0[i] - Eigen::Vector3d(0, 0, 5.0);
+  const BlastPressure load("blast", p.elements, p.mesh, charge);
+  Eigen::VectorXd u(3 * p.mesh.numNodes());
+  for (int i = 0; i < p.mesh.numNodes(); ++i) { // x -> z about the line x = 0, z = 5
+    const Eigen::Vector3d r = p.mesh.point(i) - Eigen::Vector3d(0, 0, 5.0);
     const Eigen::Vector3d turned(0.0, r.y(), 5.0 + r.x());
-    u.segment<3>(3 * static_cast<Eigen::Index>(i)) = turned - p.X0[i];
+    u.segment<3>(3 * i) = turned - p.mesh.point(i);
   }
   const BlastParameters bp = kingeryBulmash(10.0, 5.0, Burst::Hemispherical);
   const Eigen::Vector3d J =
@@ -117,11 +126,11 @@ TEST(SurfaceBlast, LoadFollowsTheTurnedPanel) {
 // A pressure table on a panel: the force integral equals the table's impulse
 // times the area along +n (trapezoids on the table's own breakpoints are
 // exact for the piecewise-linear history: relative 1e-12).
-TEST(SurfaceBlast, PressureTableGivesItsImpulseTimesArea) {
+TEST(BlastPressure, PressureTableGivesItsImpulseTimesArea) {
   const Panel p = panel({1, 2, 3}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 0.5, 3);
   const PressureTable table({0.0, 1e-3, 3e-3}, {0.0, 2e5, 0.0});
-  const SurfaceBlast load(table, p.triangles);
-  const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * static_cast<int>(p.X0.size()));
+  const BlastPressure load("table", p.elements, table);
+  const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * p.mesh.numNodes());
   const Eigen::Vector3d J = forceImpulse(load, p, u, 0.0, 3e-3, 3000);
   EXPECT_NEAR(J.z() / (table.impulse() * p.area), 1.0, 1e-12);
 }

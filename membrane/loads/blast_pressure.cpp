@@ -1,0 +1,61 @@
+#include "membrane/loads/blast_pressure.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace lamina::membrane {
+
+BlastPressure::BlastPressure(std::string name, std::vector<int> elements, const Mesh& mesh,
+                             const BlastCharge& charge)
+    : ElementPressure(std::move(name), elements), charge_(charge), loaded_(std::move(elements)) {
+  histories_.resize(static_cast<std::size_t>(mesh.numElements()));
+  for (const int e : loaded_) {
+    const auto& tri = mesh.triangles[static_cast<std::size_t>(e)];
+    const Eigen::Vector3d c = (mesh.point(tri[0]) + mesh.point(tri[1]) + mesh.point(tri[2])) / 3.0;
+    try {
+      histories_[static_cast<std::size_t>(e)] = charge.historyAt(c);
+    } catch (const Error& err) {
+      throw Error("blast on element " + std::to_string(e) + ": " + err.message());
+    }
+  }
+}
+
+BlastPressure::BlastPressure(std::string name, std::vector<int> elements, PressureTable table)
+    : ElementPressure(std::move(name), elements), loaded_(std::move(elements)),
+      table_(std::move(table)) {}
+
+double BlastPressure::pressure(int e, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
+                               double t) const {
+  if (table_)
+    return table_->pressure(t);
+  const BlastHistory& h = histories_[static_cast<std::size_t>(e)];
+  const double tau = t - h.arrival;
+  if (tau < 0 || tau > h.incident.duration)
+    return 0.0;
+  const Eigen::Vector3d d = charge_->position - x;
+  const double r = d.norm();
+  const double cos_a = r > 0 ? n.dot(d) / r : 1.0;
+  return (cos_a >= 0 ? -1.0 : 1.0) * h.pressure(t, std::abs(cos_a));
+}
+
+double BlastPressure::firstArrival() const {
+  if (table_)
+    return table_->times().front();
+  double t = std::numeric_limits<double>::infinity();
+  for (const int e : loaded_)
+    t = std::min(t, histories_[static_cast<std::size_t>(e)].arrival);
+  return t;
+}
+
+double BlastPressure::lastEnd() const {
+  if (table_)
+    return table_->times().back();
+  double t = 0;
+  for (const int e : loaded_) {
+    const auto& h = histories_[static_cast<std::size_t>(e)];
+    t = std::max(t, h.arrival + h.incident.duration);
+  }
+  return t;
+}
+
+} // namespace lamina::membrane

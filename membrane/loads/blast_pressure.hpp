@@ -1,0 +1,49 @@
+#pragma once
+/// @file blast_pressure.hpp
+/// @brief The air blast (or a user pressure history) as a follower load:
+/// pressure on each element along its current normal, on its current area,
+/// on the face that sees the charge (ElementPressure distributes it).
+///
+/// Per element e with current centroid x and unit normal n (node order):
+/// d = (charge - x) / |charge - x|, cos a = |n . d|, and the signed pressure
+/// along n is p = -sign(n . d) P(t, cos a): it pushes the seen face away
+/// from the charge. P combines the incident and the normally reflected
+/// Friedlander pulses over the angle a (blast.hpp). The blast parameters
+/// (arrival, peaks, duration, decays) are evaluated once per element at its
+/// reference centroid: during the positive phase (milliseconds) the fabric
+/// moves little. A pressure table acts along +n with p = table(t). Its work
+/// is external work (energy.csv external_work).
+
+#include "membrane/loads/blast.hpp"
+#include "membrane/loads/element_pressure.hpp"
+
+#include <optional>
+
+namespace lamina::membrane {
+
+/// Blast or tabulated pressure on a set of elements.
+class BlastPressure final : public ElementPressure {
+public:
+  /// The blast of @p charge on @p elements of @p mesh. An Error names the
+  /// first element whose scaled distance is outside the fits (Refuse policy).
+  BlastPressure(std::string name, std::vector<int> elements, const Mesh& mesh,
+                const BlastCharge& charge);
+  /// The pressure history @p table on @p elements, along +n.
+  BlastPressure(std::string name, std::vector<int> elements, PressureTable table);
+  /// @return the earliest arrival (s; table: its first time)
+  double firstArrival() const;
+  /// @return the latest end of a positive phase (s; table: its last time)
+  double lastEnd() const;
+
+protected:
+  double pressure(int e, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
+                  double t) const override;
+
+private:
+  std::optional<BlastCharge> charge_;
+  std::vector<BlastHistory> histories_; ///< indexed by element (blast only)
+  std::vector<int> loaded_;             ///< the loaded elements
+  std::optional<PressureTable> table_;
+};
+
+} // namespace lamina::membrane

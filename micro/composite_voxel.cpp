@@ -1,0 +1,132 @@
+#include "micro/composite_voxel.hpp"
+
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace lamina::micro {
+
+namespace {
+
+/// B(n): a -> sym(a (x) n) in lamina order with engineering shear; its
+/// transpose maps a stress (lamina order) to the traction sigma n.
+Eigen::Matrix<double, 6, 3> strainOfJump(const Eigen::Vector3d& n) {
+  Eigen::Matrix<double, 6, 3> B = Eigen::Matrix<double, 6, 3>::Zero();
+  B(0, 0) = n[0];
+  B(1, 1) = n[1];
+  B(2, 2) = n[2];
+  B(3, 0) = n[1]; // gamma_xy = a_x n_y + a_y n_x
+  B(3, 1) = n[0];
+  B(4, 1) = n[2]; // gamma_yz
+  B(4, 2) = n[1];
+  B(5, 0) = n[2]; // gamma_xz
+  B(5, 2) = n[0];
+  return B;
+}
+
+} // namespace
+
+materials::Stiffness laminateStiffness(const materials::Stiffness& C1,
+                                       const materials::Stiffness& C2, double c1,
+                                       const Eigen::Vector3d& n) {
+  const double c2 = 1 - c1;
+  const Eigen::Matrix<double, 6, 3> B = strainOfJump(n.normalized());
+  const materials::Matrix6 dC = C1.matrix() - C2.matrix();
+  const Eigen::Matrix3d K =
+      c2 * B.transpose() * C1.matrix() * B + c1 * B.transpose() * C2.matrix() * B;
+  const Eigen::Matrix<double, 3, 6> BtdC = B.transpose() * dC;
+  materials::Matrix6 C =
+      c1 * C1.matrix() + c2 * C2.matrix() - c1 * c2 * BtdC.transpose() * K.ldlt().solve(BtdC);
+  return materials::Stiffness(0.5 * (C + C.transpose()));
+}
+
+std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& inclusions,
+                                                const std::array<int, 3>& n,
+                                                const Eigen::Vector3d& size,
+                                                std::vector<std::int32_t>& phase) {
+  const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
+  auto wrap = [](int i, int m) { return ((i % m) + m) % m; };
+  // voxel -> (inclusion, fraction) of every inclusion that cuts it
+  std::unordered_map<std::size_t, std::vector<std::pair<int, double>>> cut;
+  for (std::size_t q = 0; q < inclusions.size(); ++q) {
+    const Inclusion& inc = inclusions[q];
+    std::array<int, 3> lo{}, hi{};
+    voxelRange(inc, n, size, lo, hi);
+    std::vector<std::pair<std::size_t, double>> found;
+#pragma omp parallel
+    {
+      std::vector<std::pair<std::size_t, double>> mine;
+#pragma omp for schedule(dynamic)
+      for (int i = lo[0]; i <= hi[0]; ++i)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+          for (int k = lo[2]; k <= hi[2]; ++k) {
+            const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
+            int in = 0;
+            for (int c = 0; c < 8; ++c)
+              in += inc.contains(corner + Eigen::Vector3d((c & 1) * h[0], ((c >> 1) & 1) * h[1],
+                                                          ((c >> 2) & 1) * h[2]),
+                                 size);
+            if (in == 0 || in == 8)
+              continue;
+            int count = 0;
+            for (int a = 0; a < kSubSamples; ++a)
+              for (int b = 0; b < kSubSamples; ++b)
+                for (int c = 0; c < kSubSamples; ++c)
+                  count += inc.contains(corner + Eigen::Vector3d((a + 0.5) / kSubSamples * h[0],
+                                                                 (b + 0.5) / kSubSamples * h[1],
+                                                                 (c + 0.5) / kSubSamples * h[2]),
+                                        size);
+            const std::size_t idx =
+                (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
+                 static_cast<std::size_t>(wrap(j, n[1]))) *
+                    static_cast<std::size_t>(n[2]) +
+                static_cast<std::size_t>(wrap(k, n[2]));
+            mine.emplace_back(idx, static_cast<double>(count) /
+                                       (kSubSamples * kSubSamples * kSubSamples));
+          }
+#pragma omp critical
+      found.insert(found.end(), mine.begin(), mine.end());
+    }
+    for (const auto& [idx, f] : found)
+      cut[idx].emplace_back(static_cast<int>(q), f);
+  }
+  std::vector<CompositeVoxel> out;
+  for (const auto& [idx, list] : cut) {
+    if (list.size() != 1)
+      continue; // cut by two inclusions: keep the centre's phase
+    const Inclusion& inc = inclusions[static_cast<std::size_t>(list[0].first)];
+    const double f = list[0].second;
+    if (f == 0 || f == 1) { // corners differ but every sub-sample agrees
+      phase[idx] = f == 1 ? inc.phase : 0;
+      continue;
+    }
+    const std::size_t nn = static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
+    const Eigen::Vector3d centre((static_cast<double>(idx / nn) + 0.5) * h[0],
+                                 (static_cast<double>((idx / static_cast<std::size_t>(n[2])) %
+                                                      static_cast<std::size_t>(n[1])) +
+                                  0.5) *
+                                     h[1],
+                                 (static_cast<double>(idx % static_cast<std::size_t>(n[2])) + 0.5) *
+                                     h[2]);
+    out.push_back({idx, inc.phase, 0, f, inc.normalAt(centre, size)});
+  }
+  std::sort(out.begin(), out.end(),
+            [](const CompositeVoxel& a, const CompositeVoxel& b) { return a.index < b.index; });
+  return out;
+}
+
+VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials::Stiffness>& C,
+                              const std::vector<double>& density) {
+  VoxelMaterials m{cell.phase, C, density};
+  for (const CompositeVoxel& v : cell.composites) {
+    const auto in = static_cast<std::size_t>(v.inside), out = static_cast<std::size_t>(v.outside);
+    m.phase[v.index] = static_cast<std::int32_t>(m.C.size());
+    m.C.push_back(laminateStiffness(C[in], C[out], v.fraction, v.normal));
+    m.density.push_back(v.fraction * density[in] + (1 - v.fraction) * density[out]);
+  }
+  return m;
+}
+
+} // namespace lamina::micro

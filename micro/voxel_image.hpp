@@ -1,0 +1,79 @@
+#pragma once
+/// @file voxel_image.hpp
+/// @brief A voxel image of integer labels (a segmented scan or a written
+/// phase map) and where a cell file says to find one.
+///
+/// Layout in memory is lamina's everywhere: C order, x slowest, index
+/// (i n1 + j) n2 + k. Each file format states its own order and the readers
+/// convert (VTK ImageData and TIFF stacks store x fastest).
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace lamina::micro {
+
+/// File formats an image cell can name and `micro --out` can write.
+enum class ImageFormat {
+  Hdf5, ///< .h5 / .hdf5: an integer dataset (`dataset`, default /phases)
+  Vti,  ///< .vti: VTK XML ImageData (ascii, base64 binary, appended raw/base64, zlib)
+  Raw,  ///< .raw / .bin: headerless array, dimensions/type/byte order from the cell
+  Tiff, ///< .tif / .tiff: multi-page stack, one page per z slice
+};
+
+/// @return the format named by @p path's extension; false if none matches
+bool formatFromExtension(const std::filesystem::path& path, ImageFormat& out);
+/// @return the format for "hdf5", "vti", "raw", "tiff"; false if unknown
+bool parseImageFormat(const std::string& word, ImageFormat& out);
+/// @return the name of @p f ("hdf5", "vti", "raw", "tiff")
+std::string toString(ImageFormat f);
+
+/// Element types of raw files (and the integer types the readers accept).
+enum class ScalarType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64 };
+/// @return the type for "int8", "uint8", ..., "uint64"; false if unknown
+bool parseScalarType(const std::string& word, ScalarType& out);
+/// @return the name of @p t ("uint8", ...)
+std::string toString(ScalarType t);
+/// @return the size of one element of @p t in bytes
+int bytesOf(ScalarType t);
+
+/// How the dimensions of an HDF5 dataset or a raw file are listed, slowest
+/// first: Xyz (lamina's own files, an h5py array indexed a[x, y, z]) or Zyx
+/// (ImageJ, scanners, numpy arrays indexed a[z, y, x]: x fastest).
+enum class AxisOrder { Xyz, Zyx };
+
+/// Where an image cell's voxels come from (the `[cell]` keys of an image cell).
+struct ImageSource {
+  std::filesystem::path path;             ///< image file, resolved against the cell file's folder
+  std::string key = "cell.image";         ///< key named in errors
+  std::string cell_file;                  ///< the cell file (errors)
+  ImageFormat format = ImageFormat::Hdf5; ///< from `format` or the extension
+  std::string dataset;                    ///< HDF5 dataset / VTI array name ("" = default)
+  AxisOrder axes = AxisOrder::Xyz;        ///< HDF5 and raw only
+  std::array<int, 3> dimensions{0, 0, 0}; ///< raw only: voxels along x, y, z
+  ScalarType type = ScalarType::UInt8;    ///< raw only
+  bool big_endian = false;                ///< raw only
+  std::uint64_t header_bytes = 0;         ///< raw only: bytes to skip
+  std::array<int, 3> crop_start{0, 0, 0}; ///< first voxel kept (0-based)
+  std::array<int, 3> crop_count{0, 0, 0}; ///< voxels kept (0 = up to the end)
+  int downsample = 1;                     ///< integer factor: blocks of f^3 voxels -> one
+};
+
+/// An image of integer labels.
+struct VoxelImage {
+  std::array<int, 3> n{0, 0, 0};          ///< voxels along x, y, z
+  std::vector<std::int32_t> value;        ///< label per voxel, x slowest
+  std::optional<Eigen::Vector3d> spacing; ///< voxel edge lengths if the file gives them
+  /// @return the number of voxels
+  std::size_t voxels() const {
+    return static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *
+           static_cast<std::size_t>(n[2]);
+  }
+};
+
+} // namespace lamina::micro
