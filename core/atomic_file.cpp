@@ -28,15 +28,49 @@ void fsyncDirectory(const std::filesystem::path& file) {
 }
 } // namespace
 
-void writeFileAtomically(const std::filesystem::path& path, const std::string& content) {
+std::filesystem::path resolveLinks(const std::filesystem::path& path) {
+  std::filesystem::path p = path;
+  for (int hops = 0;; ++hops) {
+    std::error_code ec;
+    if (!std::filesystem::is_symlink(std::filesystem::symlink_status(p, ec)))
+      break;
+    if (hops == 40)
+      throw Error("too many levels of symbolic links", {path.string(), 0, ""});
+    const std::filesystem::path target = std::filesystem::read_symlink(p);
+    p = target.is_absolute() ? target : p.parent_path() / target;
+  }
+  // Links among the folders: resolve those that exist.
+  std::error_code ec;
+  const std::filesystem::path dir = std::filesystem::weakly_canonical(
+      p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path(), ec);
+  return ec ? p : dir / p.filename();
+}
+
+std::string temporaryPrefix(const std::filesystem::path& path) {
+  return path.filename().string() + ".tmp.";
+}
+
+void writeFileAtomically(const std::filesystem::path& link, const std::string& content) {
+  const std::filesystem::path path = resolveLinks(link);
   const std::filesystem::path dir = path.parent_path();
   if (!dir.empty())
     std::filesystem::create_directories(dir);
+  struct stat old {};
+  const mode_t mode = ::stat(path.c_str(), &old) == 0 ? (old.st_mode & 07777) : 0644;
   std::string tmpl = path.string() + ".tmp.XXXXXX";
   const int fd = ::mkstemp(tmpl.data());
   if (fd < 0)
     sysFail("cannot create temporary file", path);
   const std::filesystem::path tmp = tmpl;
+  // On failure: close, remove the temporary, report the first errno.
+  auto fail = [&](const char* what) {
+    const int err = errno;
+    ::close(fd);
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    errno = err;
+    sysFail(what, tmp);
+  };
   const char* data = content.data();
   std::size_t left = content.size();
   while (left > 0) {
@@ -44,19 +78,20 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& c
     if (n < 0) {
       if (errno == EINTR)
         continue;
-      ::close(fd);
-      std::filesystem::remove(tmp);
-      sysFail("cannot write", tmp);
+      fail("cannot write");
     }
     data += n;
     left -= static_cast<std::size_t>(n);
   }
-  if (::fchmod(fd, 0644) != 0 || ::fsync(fd) != 0) {
-    ::close(fd);
-    std::filesystem::remove(tmp);
-    sysFail("cannot sync", tmp);
+  if (::fchmod(fd, mode) != 0 || ::fsync(fd) != 0)
+    fail("cannot sync");
+  if (::close(fd) != 0) {
+    const int err = errno;
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    errno = err;
+    sysFail("cannot close", tmp);
   }
-  ::close(fd);
   renameIntoPlace(tmp, path);
 }
 
@@ -70,7 +105,7 @@ void renameIntoPlace(const std::filesystem::path& from, const std::filesystem::p
 }
 
 FileLock::FileLock(const std::filesystem::path& path) {
-  const std::filesystem::path lock = path.string() + ".lock";
+  const std::filesystem::path lock = resolveLinks(path).string() + ".lock";
   if (!lock.parent_path().empty())
     std::filesystem::create_directories(lock.parent_path());
   fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT, 0644);

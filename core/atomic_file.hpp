@@ -12,15 +12,29 @@
 namespace lamina::core {
 
 /// Replaces @p path by @p content atomically (write aside, fsync, rename).
-/// Throws lamina::Error naming the path on failure; the target is untouched.
+/// A symlink stays a symlink: the file it points to (resolveLinks) is
+/// replaced, and an existing file keeps its permission bits (a new one gets
+/// 0644). Throws lamina::Error naming the path on failure; the target is
+/// untouched and the temporary removed.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& content);
+
+/// @return @p path with every symlink along it followed (also a dangling
+/// last link: the file it would create); the path itself when nothing is a
+/// link. Throws lamina::Error on a link loop.
+std::filesystem::path resolveLinks(const std::filesystem::path& path);
+
+/// Prefix of the temporaries writeFileAtomically() creates beside @p path
+/// ("<name>.tmp."); files with it are debris of an interrupted write.
+std::string temporaryPrefix(const std::filesystem::path& path);
 
 /// Renames @p from over @p to and fsyncs the directory (the last step of an
 /// atomic write done by other means, e.g. an HDF5 file written aside).
 void renameIntoPlace(const std::filesystem::path& from, const std::filesystem::path& to);
 
-/// Exclusive advisory lock (flock) on "<path>.lock", held for the lifetime of
-/// the object. Serializes read-modify-write cycles of cooperating processes.
+/// Exclusive advisory lock (flock) on "<path>.lock" (symlinks in @p path
+/// resolved first, so every name of one file shares one lock), held for the
+/// lifetime of the object. Serializes read-modify-write cycles of
+/// cooperating processes.
 class FileLock {
 public:
   /// Blocks until the lock on "<path>.lock" is acquired.

@@ -19,6 +19,32 @@ std::string formatShort(double x, int digits) {
   return buf;
 }
 
+std::string xmlEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+    case '&':
+      out += "&amp;";
+      break;
+    case '<':
+      out += "&lt;";
+      break;
+    case '>':
+      out += "&gt;";
+      break;
+    case '"':
+      out += "&quot;";
+      break;
+    case '\'':
+      out += "&apos;";
+      break;
+    default:
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::string joinNames(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& n : names)

@@ -15,6 +15,10 @@ std::string formatExact(double x);
 /// Formats @p x with @p digits significant digits for humans ("%.*g").
 std::string formatShort(double x, int digits = 6);
 
+/// @return @p text with & < > " ' replaced by XML entities (for attribute
+/// values and text written into XDMF files)
+std::string xmlEscape(const std::string& text);
+
 /// Joins @p names with ", " (for messages that list what a file holds).
 std::string joinNames(const std::vector<std::string>& names);
 

@@ -2,9 +2,11 @@
 
 #include "core/error.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <sys/stat.h>
 
 namespace lamina::core {
 
@@ -43,18 +45,157 @@ int lineOfNode(const toml::node& n) {
   return static_cast<int>(n.source().begin.line);
 }
 
+/// Depth of TOML nesting along a scan: every open bracket or brace adds one
+/// level, every component of a dotted key (or table header) another.
+class DepthScanner {
+public:
+  DepthScanner(std::string_view text, const std::string& source) : text_(text), source_(source) {}
+
+  void scan() {
+    for (i_ = 0; i_ < text_.size(); ++i_) {
+      const char c = text_[i_];
+      switch (c) {
+      case '\n':
+        ++line_;
+        if (open_.empty()) { // a new top-level line: a key or a [header]
+          in_key_ = true;
+          dots_ = 0;
+          if (in_header_)
+            section_ = header_depth_;
+          in_header_ = false;
+        }
+        break;
+      case '#':
+        while (i_ + 1 < text_.size() && text_[i_ + 1] != '\n')
+          ++i_;
+        break;
+      case '"':
+      case '\'':
+        skipString(c);
+        break;
+      case '[':
+      case '{':
+        if (open_.empty() && in_key_ && c == '[') { // a [table] header starts from the root
+          in_header_ = true;
+          header_depth_ = 0;
+        }
+        open_.push_back({depth() + 1, c == '{'});
+        dots_ = 0;
+        check();
+        in_key_ = c == '{' || in_header_;
+        break;
+      case ']':
+      case '}':
+        if (!open_.empty())
+          open_.pop_back();
+        in_key_ = false;
+        break;
+      case ',': // the next key of an inline table, or the next array value
+        in_key_ = !open_.empty() && open_.back().brace;
+        dots_ = 0;
+        break;
+      case '=':
+        in_key_ = false;
+        break;
+      case '.':
+        if (in_key_) {
+          ++dots_;
+          check();
+        }
+        break;
+      default:
+        break;
+      }
+    }
+  }
+
+private:
+  int depth() const {
+    if (!open_.empty())
+      return open_.back().depth + dots_;
+    return (in_header_ ? 0 : section_) + dots_;
+  }
+  void check() {
+    const int d = depth();
+    if (in_header_)
+      header_depth_ = std::max(header_depth_, d);
+    if (d > kMaxTomlDepth)
+      throw Error("TOML nested deeper than " + std::to_string(kMaxTomlDepth) +
+                      " levels (brackets, braces and dotted-key components); refusing to parse",
+                  {source_, line_, ""});
+  }
+  void skipString(char q) {
+    const bool triple = i_ + 2 < text_.size() && text_[i_ + 1] == q && text_[i_ + 2] == q;
+    i_ += triple ? 3 : 1;
+    for (; i_ < text_.size(); ++i_) {
+      const char c = text_[i_];
+      if (c == '\n')
+        ++line_;
+      if (q == '"' && c == '\\') {
+        ++i_;
+        if (i_ < text_.size() && text_[i_] == '\n')
+          ++line_;
+        continue;
+      }
+      if (c == q &&
+          (!triple || (i_ + 2 < text_.size() && text_[i_ + 1] == q && text_[i_ + 2] == q))) {
+        if (triple)
+          i_ += 2;
+        return;
+      }
+    }
+  }
+
+  std::string_view text_;
+  const std::string& source_;
+  std::size_t i_ = 0;
+  int line_ = 1;
+  struct Open {
+    int depth;  // depth reached by this bracket or brace
+    bool brace; // an inline table (keys follow '{' and ',')
+  };
+  std::vector<Open> open_;
+  int dots_ = 0;    // components so far of the key being read
+  int section_ = 0; // depth of the current [table] header
+  int header_depth_ = 0;
+  bool in_key_ = true;
+  bool in_header_ = false;
+};
+
 } // namespace
 
-toml::table parseTomlFile(const std::filesystem::path& path) {
+void checkTomlLimits(std::string_view text, const std::string& source) {
+  if (text.size() > kMaxTomlBytes)
+    throw Error("TOML input of " + std::to_string(text.size()) + " bytes exceeds the limit of " +
+                    std::to_string(kMaxTomlBytes) + " bytes",
+                {source, 0, ""});
+  DepthScanner(text, source).scan();
+}
+
+std::string readInputFile(const std::filesystem::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0)
+    throw Error("cannot open file", {path.string(), 0, ""});
+  if (!S_ISREG(st.st_mode))
+    throw Error("not a regular file", {path.string(), 0, ""});
+  if (static_cast<std::uintmax_t>(st.st_size) > kMaxTomlBytes)
+    throw Error("file of " + std::to_string(st.st_size) + " bytes exceeds the input limit of " +
+                    std::to_string(kMaxTomlBytes) + " bytes",
+                {path.string(), 0, ""});
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw Error("cannot open file", {path.string(), 0, ""});
   std::stringstream ss;
   ss << in.rdbuf();
-  return parseTomlString(ss.str(), path.string());
+  return ss.str();
+}
+
+toml::table parseTomlFile(const std::filesystem::path& path) {
+  return parseTomlString(readInputFile(path), path.string());
 }
 
 toml::table parseTomlString(std::string_view text, const std::string& source_name) {
+  checkTomlLimits(text, source_name);
   try {
     return toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
@@ -69,6 +210,7 @@ void applyOverride(toml::table& doc, const std::string& assignment) {
     throw Error("override must read key=value", {"--set", 0, assignment});
   const std::string key = assignment.substr(0, eq);
   const std::string value = assignment.substr(eq + 1);
+  checkTomlLimits(assignment, "--set " + key);
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + value);
@@ -167,8 +309,14 @@ const toml::node& TableReader::require(std::string_view key) const {
 double TableReader::getDouble(std::string_view key) const {
   const toml::node& n = require(key);
   if (auto v = numberOf(n))
-    return *v;
+    return finite(key, *v);
   fail(key, "expected a number, got " + typeName(n));
+}
+
+double TableReader::finite(std::string_view key, double v) const {
+  if (!std::isfinite(v))
+    fail(key, "expected a finite number, got " + std::string(std::isnan(v) ? "nan" : "inf"));
+  return v;
 }
 
 double TableReader::getDouble(std::string_view key, double fallback) const {
@@ -184,6 +332,19 @@ std::int64_t TableReader::getInt(std::string_view key) const {
 
 std::int64_t TableReader::getInt(std::string_view key, std::int64_t fallback) const {
   return has(key) ? getInt(key) : fallback;
+}
+
+std::int64_t TableReader::getIntIn(std::string_view key, std::int64_t lo, std::int64_t hi) const {
+  const std::int64_t v = getInt(key);
+  if (v < lo || v > hi)
+    fail(key, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                  "], got " + std::to_string(v));
+  return v;
+}
+
+std::int64_t TableReader::getIntIn(std::string_view key, std::int64_t lo, std::int64_t hi,
+                                   std::int64_t fallback) const {
+  return has(key) ? getIntIn(key, lo, hi) : fallback;
 }
 
 bool TableReader::getBool(std::string_view key, bool fallback) const {
@@ -214,7 +375,7 @@ std::vector<double> TableReader::getDoubleArray(std::string_view key) const {
   std::vector<double> out;
   for (const toml::node& e : *a) {
     if (auto v = numberOf(e))
-      out.push_back(*v);
+      out.push_back(finite(key, *v));
     else
       fail(key, "expected an array of numbers, found a " + typeName(e));
   }
@@ -249,7 +410,7 @@ std::vector<std::vector<double>> TableReader::getMatrix(std::string_view key) co
     std::vector<double> values;
     for (const toml::node& e : *r) {
       if (auto v = numberOf(e))
-        values.push_back(*v);
+        values.push_back(finite(key, *v));
       else
         fail(key, "expected numbers in every row, found a " + typeName(e));
     }

@@ -21,11 +21,30 @@
 
 namespace lamina::core {
 
+/// Largest TOML input read (bytes): a library of thousands of entries fits;
+/// anything larger is refused before it is read into memory.
+inline constexpr std::uintmax_t kMaxTomlBytes = 64u << 20;
+/// Deepest nesting accepted: brackets and braces plus the components of a
+/// dotted key. toml++ recurses once per level and has no limit of its own
+/// for dotted keys, so deeper input could overflow the stack.
+inline constexpr int kMaxTomlDepth = 64;
+
+/// Refuses (lamina::Error naming @p source and the line) text larger than
+/// kMaxTomlBytes or nested deeper than kMaxTomlDepth. Scans strings and
+/// comments as TOML does, so brackets and dots inside them do not count.
+void checkTomlLimits(std::string_view text, const std::string& source);
+
+/// @return the whole content of the input file @p path; throws lamina::Error
+/// naming the file when it cannot be opened, is not a regular file or is
+/// larger than kMaxTomlBytes (checked before reading).
+std::string readInputFile(const std::filesystem::path& path);
+
 /// Parses a TOML file. Throws lamina::Error naming the file (and the line of
 /// a syntax error) when it cannot be read or parsed.
 toml::table parseTomlFile(const std::filesystem::path& path);
 
-/// Parses TOML text; @p source_name names it in error messages.
+/// Parses TOML text (checkTomlLimits first); @p source_name names it in
+/// error messages.
 toml::table parseTomlString(std::string_view text, const std::string& source_name);
 
 /// Applies a command-line override "a.b.c=value" to @p doc. The value is
@@ -50,7 +69,8 @@ public:
   /// @return the keys present, in document order
   std::vector<std::string> keys() const;
 
-  /// Required number (integer or float accepted).
+  /// Required finite number (integer or float accepted; nan and inf are
+  /// errors naming the key).
   double getDouble(std::string_view key) const;
   /// Optional number with a default.
   double getDouble(std::string_view key, double fallback) const;
@@ -58,17 +78,22 @@ public:
   std::int64_t getInt(std::string_view key) const;
   /// Optional integer with a default.
   std::int64_t getInt(std::string_view key, std::int64_t fallback) const;
+  /// Required integer in [@p lo, @p hi]; an error names the range otherwise.
+  std::int64_t getIntIn(std::string_view key, std::int64_t lo, std::int64_t hi) const;
+  /// Optional integer in [@p lo, @p hi] with a default.
+  std::int64_t getIntIn(std::string_view key, std::int64_t lo, std::int64_t hi,
+                        std::int64_t fallback) const;
   /// Optional boolean with a default.
   bool getBool(std::string_view key, bool fallback) const;
   /// Required string.
   std::string getString(std::string_view key) const;
   /// Optional string with a default.
   std::string getString(std::string_view key, const std::string& fallback) const;
-  /// Required array of numbers.
+  /// Required array of finite numbers.
   std::vector<double> getDoubleArray(std::string_view key) const;
   /// Required array of strings.
   std::vector<std::string> getStringArray(std::string_view key) const;
-  /// Required array of arrays of numbers (a matrix, rows first).
+  /// Required array of arrays of finite numbers (a matrix, rows first).
   std::vector<std::vector<double>> getMatrix(std::string_view key) const;
 
   /// Required sub-table.
@@ -104,6 +129,7 @@ private:
     std::set<std::string> whole; // dotted paths accepted with their subtree
   };
   const toml::node& require(std::string_view key) const;
+  double finite(std::string_view key, double v) const;
   void mark(std::string_view key) const;
   void checkUnread(const toml::table& t, const std::string& prefix) const;
   int lineOf(std::string_view key) const;

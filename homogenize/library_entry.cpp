@@ -179,29 +179,14 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
     materials::Material m = makeEntry(e.name, spec, cell, e.result, options, J,
                                       e.dispersion ? &*e.dispersion : nullptr);
     // The phase map goes to an HDF5 side file beside the library (DESIGN.md:
-    // large arrays never enter the text file), written before the entry that
-    // names it so an entry never points at a missing file. Its path is stored
-    // relative to the library's folder.
-    const std::filesystem::path folder = library.path().parent_path();
-    const std::filesystem::path side =
-        std::filesystem::path(library.path().stem().string() + ".side") / (e.name + ".h5");
+    // large arrays never enter the text file), written in the same
+    // transaction as the entry that names it: an entry never points at a
+    // missing file and a failed add leaves no side file behind.
     std::vector<std::string> names;
     for (const auto& ph : spec.phases)
       names.push_back(ph.name);
-    std::filesystem::create_directories((folder / side).parent_path());
-    const bool existed = std::filesystem::exists(folder / side);
-    micro::writePhaseMap(cell, names, folder / side);
-    m.side_file = side.string();
-    try {
-      library.add(m, overwrite);
-    } catch (...) {
-      if (existed) // --overwrite of an entry whose side file it was: keep it
-        throw;
-      std::error_code ec;
-      std::filesystem::remove(folder / side, ec);
-      std::filesystem::remove(std::filesystem::path(folder / side).replace_extension(".xdmf"), ec);
-      throw;
-    }
+    library.add(std::move(m), overwrite,
+                [&](const std::filesystem::path& h5) { micro::writePhaseMap(cell, names, h5); });
     if (report)
       report(e);
     out.push_back(std::move(e));

@@ -7,7 +7,8 @@
 /// builds the cell, scatters it, prints and writes the library).
 
 #include "core/error.hpp"
-#include "core/memory.hpp"
+#include "core/names.hpp"
+#include "core/resources.hpp"
 #include "homogenize/distribution.hpp"
 #include "homogenize/homogenizer.hpp"
 #include "homogenize/library_entry.hpp"
@@ -151,6 +152,9 @@ int main(int argc, char** argv) {
   }
   try {
     using namespace lamina;
+    if (!name.empty()) // a nonlinear run without a library entry has none
+      core::checkName(name, "entry name", {"", 0, "--name"});
+    core::checkThreads(threads, "--threads");
     const micro::CellSpec spec = micro::readCell(cell_path, micro::lazyCatalog(catalog));
     std::array<int, 3> n = spec.resolution;
     if (resolution > 0)
@@ -166,11 +170,11 @@ int main(int argc, char** argv) {
         precision == "single" ||
         (precision == "auto" && homogenize::autoPrecision(tol) == homogenize::Precision::Single);
     const std::uint64_t per_voxel = 76 + (single ? 12 : 24) + (estimate == "energy" ? 144 : 0);
-    core::requireMemory(voxels * per_voxel / static_cast<std::uint64_t>(mpi.ranks()) +
-                            (mpi.rank() == 0 ? 8 * voxels : 0),
+    core::requireMemory(double(voxels * per_voxel / static_cast<std::uint64_t>(mpi.ranks()) +
+                               (mpi.rank() == 0 ? 8 * voxels : 0)),
                         "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
                             " x " + std::to_string(n[2]) + " voxels",
-                        {cell_path, 0, ""},
+                        {cell_path, 0, resolution > 0 ? "--resolution" : "cell.resolution"},
                         "run it distributed: mpirun -np N homogenize " + cell_path +
                             " ... (each rank holds 1/N of the fields), or --estimate stress "
                             "--precision single (90 bytes per voxel)");

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/names.hpp"
 #include "core/toml_reader.hpp"
 #include "materials/law_spec.hpp"
 
@@ -42,6 +43,8 @@ Catalog::Catalog(const std::filesystem::path& path) : path_(path) {
     const core::TableReader t = root.table(name);
     CatalogEntry e;
     e.name = name;
+    if (const std::string why = core::nameProblem(name); !why.empty())
+      t.failHere("material name " + why);
     e.description = t.getString("description");
     e.source = t.getString("source");
     e.density = t.getDouble("density");

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/names.hpp"
 #include "materials/conversions.hpp"
 #include "materials/symmetry.hpp"
 
@@ -158,6 +159,11 @@ nlohmann::json materialToJson(const Material& m) {
 }
 
 std::string exportCard(const Material& m, const std::string& format) {
+  // Names are written into comment and keyword lines of the cards: a
+  // newline or control character there would start a line of its own.
+  core::checkName(m.name, "material name");
+  for (const Ply& p : m.plies)
+    core::checkName(p.material, "ply material name");
   if (format == "abaqus")
     return abaqusLike(m, "ANISOTROPIC", true);
   if (format == "calculix")

@@ -3,11 +3,13 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/names.hpp"
 #include "core/toml_reader.hpp"
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 namespace lamina::materials {
@@ -123,7 +125,68 @@ void writeMatrix6(std::ostream& os, const char* k, const Matrix6& c) {
   os << "]\n";
 }
 
+/// The side files of one transaction: written into a fresh stage folder
+/// inside the side folder, under names unique to the transaction (the
+/// stage's random suffix), then renamed into the side folder. Nothing is
+/// overwritten, so the library write is the one commit point: until it, the
+/// library names the previous files, which stay; after it, the previous
+/// files are named by nothing and swept.
+class SideFiles {
+public:
+  /// Names of stage folders start with this ("<stem>.side/.stage.XXXXXX").
+  static constexpr const char* kStagePrefix = ".stage.";
+
+  explicit SideFiles(std::filesystem::path folder) : folder_(std::move(folder)) {}
+  ~SideFiles() {
+    std::error_code ec;
+    if (!stage_.empty())
+      std::filesystem::remove_all(stage_, ec);
+  }
+  SideFiles(const SideFiles&) = delete;
+  SideFiles& operator=(const SideFiles&) = delete;
+
+  /// Creates the stage folder and @return the unique stem "<name>.XXXXXX"
+  /// its files are to be named with.
+  std::string open(const std::string& name) {
+    std::filesystem::create_directories(folder_);
+    std::string tmpl = (folder_ / (std::string(kStagePrefix) + "XXXXXX")).string();
+    if (!::mkdtemp(tmpl.data()))
+      throw Error("cannot create a temporary folder for side files", {folder_.string(), 0, ""});
+    stage_ = tmpl;
+    return name + "." + tmpl.substr(tmpl.size() - 6);
+  }
+  /// @return the stage folder
+  const std::filesystem::path& stage() const { return stage_; }
+
+  /// Renames every file of the stage into the side folder.
+  void place() {
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(stage_))
+      if (e.is_regular_file())
+        files.push_back(e.path());
+    for (const auto& f : files) {
+      const std::filesystem::path to = folder_ / f.filename();
+      core::renameIntoPlace(f, to);
+      placed_.push_back(to);
+    }
+  }
+
+  /// Undoes place(): removes what it placed.
+  void rollBack() {
+    std::error_code ec;
+    for (const auto& p : placed_)
+      std::filesystem::remove(p, ec);
+    placed_.clear();
+  }
+
+private:
+  std::filesystem::path folder_, stage_;
+  std::vector<std::filesystem::path> placed_;
+};
+
 Material readEntry(const core::TableReader& t, const std::string& name) {
+  if (const std::string why = core::nameProblem(name); !why.empty())
+    t.failHere("material name " + why + " (names: docs/reliability.md)");
   Material m;
   m.name = name;
   m.kind = t.getString("kind");
@@ -142,9 +205,14 @@ Material readEntry(const core::TableReader& t, const std::string& name) {
   if (t.has("thickness"))
     m.thickness = t.getDouble("thickness");
   m.side_file = t.getString("side_file", "");
+  for (const auto& part : std::filesystem::path(m.side_file))
+    if (m.side_file.front() == '/' || part == "..")
+      t.fail("side_file", "must be a path inside the library's folder (relative, without '..')");
   for (const core::TableReader& p : t.tableArray("plies")) {
     m.plies.push_back(
         {p.getString("material"), p.getDouble("angle_deg"), p.getDouble("thickness")});
+    if (const std::string why = core::nameProblem(m.plies.back().material); !why.empty())
+      p.fail("material", "material name " + why);
     if (!(m.plies.back().thickness > 0))
       p.fail("thickness", "ply thickness must be positive (m)");
   }
@@ -278,7 +346,19 @@ const Material& Library::get(const std::string& name) const {
   return it->second;
 }
 
+std::filesystem::path Library::folder() const {
+  return core::resolveLinks(path_).parent_path();
+}
+
+std::filesystem::path Library::sideFolder() const {
+  return std::filesystem::path(core::resolveLinks(path_).stem().string() + ".side");
+}
+
 void Library::add(const Material& m, bool overwrite) {
+  add(m, overwrite, SideFileWriter{});
+}
+
+void Library::add(Material m, bool overwrite, const SideFileWriter& write_side) {
   validate(m);
   const core::FileLock lock(path_);
   reload(); // another process may have added entries since we loaded
@@ -286,12 +366,26 @@ void Library::add(const Material& m, bool overwrite) {
     throw Error("material already in library " + path_.string() +
                     " (remove it first or choose another name)",
                 {"", 0, m.name});
-  auto updated = entries_;
-  updated[m.name] = m;
-  const std::string text = serialize(updated);
-  parse(text, path_.string() + " (about to be written)"); // never write what we cannot read back
-  core::writeFileAtomically(path_, text);
-  entries_ = std::move(updated);
+  sweep();
+  SideFiles side(folder() / sideFolder());
+  try {
+    if (write_side) {
+      const std::string stem = side.open(m.name);
+      m.side_file = (sideFolder() / (stem + ".h5")).string();
+      write_side(side.stage() / (stem + ".h5"));
+      side.place();
+    }
+    auto updated = entries_;
+    updated[m.name] = m;
+    const std::string text = serialize(updated);
+    parse(text, path_.string() + " (about to be written)"); // never write what we cannot read back
+    core::writeFileAtomically(path_, text);                 // the commit point
+    entries_ = std::move(updated);
+  } catch (...) {
+    side.rollBack();
+    throw;
+  }
+  sweep(); // the side files of the entry just replaced
 }
 
 void Library::remove(const std::string& name) {
@@ -302,6 +396,32 @@ void Library::remove(const std::string& name) {
   updated.erase(name);
   core::writeFileAtomically(path_, serialize(updated));
   entries_ = std::move(updated);
+  sweep(); // the entry's side files, now named by nothing
+}
+
+void Library::sweep() const {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path file = core::resolveLinks(path_);
+  const std::string prefix = core::temporaryPrefix(file);
+  for (const auto& e : fs::directory_iterator(file.parent_path(), ec))
+    if (e.path().filename().string().rfind(prefix, 0) == 0)
+      fs::remove(e.path(), ec);
+  const fs::path side = folder() / sideFolder();
+  if (!fs::is_directory(side, ec))
+    return;
+  std::set<std::string> named; // stems of the side files entries name
+  for (const auto& [name, m] : entries_)
+    if (!m.side_file.empty() && fs::path(m.side_file).parent_path() == sideFolder())
+      named.insert(fs::path(m.side_file).stem().string());
+  std::vector<fs::path> debris;
+  for (const auto& e : fs::directory_iterator(side, ec)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind(SideFiles::kStagePrefix, 0) == 0 || !named.count(e.path().stem().string()))
+      debris.push_back(e.path());
+  }
+  for (const auto& p : debris)
+    fs::remove_all(p, ec);
 }
 
 } // namespace lamina::materials

@@ -12,6 +12,10 @@
 /// re-read the file, apply the change and replace the file atomically (write
 /// aside, fsync, rename). A failed or interrupted write leaves the previous
 /// file intact; concurrent writers serialize and all their entries land.
+/// Side files are part of the same transaction (add with a SideFileWriter),
+/// and each write, under the lock, removes what interrupted writers left
+/// (temporaries, side files no entry names). A library that is a symlink
+/// stays one (the file it points to is written) and keeps its permissions.
 /// Reading validates strictly: a file that is not a lamina library, an
 /// unknown key, a malformed or non-positive-definite entry is an error naming
 /// the file, the line and the key.
@@ -19,6 +23,7 @@
 #include "materials/material.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -40,6 +45,9 @@ public:
 
   /// @return the file path
   const std::filesystem::path& path() const { return path_; }
+  /// @return the folder side-file paths are relative to: that of the library
+  /// file once symlinks are resolved
+  std::filesystem::path folder() const;
   /// @return the entry names in sorted order
   std::vector<std::string> names() const;
   /// @return whether @p name is present
@@ -48,9 +56,24 @@ public:
   /// and listing what it holds when absent
   const Material& get(const std::string& name) const;
 
+  /// Writes the side file of an entry to the path it is given (and, if it
+  /// wants, companion files of the same stem beside it, e.g. an .xdmf that
+  /// names the .h5 by its file name).
+  using SideFileWriter = std::function<void(const std::filesystem::path& h5)>;
+
   /// Adds @p m (validated first) and writes the file. With @p overwrite false an
   /// existing entry of the same name is an error and nothing is written.
   void add(const Material& m, bool overwrite = false);
+
+  /// Adds @p m with a side file, in one transaction under the library's lock:
+  /// @p write_side writes into a fresh temporary folder inside the side
+  /// folder "<stem>.side/" (beside the library file, symlinks resolved)
+  /// under a name unique to this transaction, "<name>.XXXXXX.h5"; its files
+  /// are renamed into the side folder, m.side_file is set to that path
+  /// (relative to folder()) and the library is written: the commit point.
+  /// On any failure the new files are removed and the library is unchanged;
+  /// after the commit the files of a replaced entry are removed.
+  void add(Material m, bool overwrite, const SideFileWriter& write_side);
   /// Removes entry @p name and writes the file; error if absent.
   void remove(const std::string& name);
 
@@ -61,6 +84,11 @@ public:
 
 private:
   void reload();
+  /// Under the lock: removes debris of interrupted writes (the library's
+  /// temporaries, temporary side folders) and side files no entry names.
+  void sweep() const;
+  /// @return "<stem>.side", the side folder relative to folder()
+  std::filesystem::path sideFolder() const;
   std::filesystem::path path_;
   std::map<std::string, Material> entries_;
 };

@@ -1,6 +1,7 @@
 #include "materials/material.hpp"
 
 #include "core/error.hpp"
+#include "core/names.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -10,9 +11,8 @@
 namespace lamina::materials {
 
 void validate(const Material& m) {
+  core::checkName(m.name, "material name"); // the message shows it printably
   const ErrorContext ctx{"", 0, m.name};
-  if (m.name.empty())
-    throw Error("material name is empty");
   m.C.validate(m.name);
   if (!(m.density > 0) || !std::isfinite(m.density))
     throw Error("density must be positive and finite (kg/m^3), got " + std::to_string(m.density),

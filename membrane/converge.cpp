@@ -48,6 +48,25 @@ ConvergenceStudy runConvergence(const std::filesystem::path& path,
   const double dt0 = coarse.time.dt;
   const long steps0 = std::lround(coarse.time.t_end / dt0);
   const int nsample_nodes = coarse.mesh.numNodes();
+  // The finest grid is refused up front, before the coarse ones ran: it has
+  // 2^(levels-1) times the cells per direction and the steps.
+  LAMINA_CHECK(levels <= 20,
+               "--levels must be <= 20 (the finest grid has 2^(levels-1) times "
+               "the cells per direction), got ",
+               levels);
+  const double f_max = std::ldexp(1.0, levels - 1);
+  const ErrorContext levels_ctx{path.string(), 0, "--levels " + std::to_string(levels)};
+  if (!(double(std::max(nx0, ny0)) * f_max <= 100000))
+    throw Error("the finest grid would have nx = " + core::formatShort(nx0 * f_max) +
+                    ", ny = " + core::formatShort(ny0 * f_max) +
+                    "; mesh.nx and mesh.ny are at most "
+                    "100000",
+                levels_ctx);
+  requireRunMemory((nx0 * f_max + 1) * (ny0 * f_max + 1), "the finest grid", levels_ctx);
+  if (!(double(steps0) * f_max <= kMaxSteps))
+    throw Error("the finest grid would take " + core::formatShort(double(steps0) * f_max) +
+                    " steps; at most " + core::formatShort(kMaxSteps),
+                levels_ctx);
 
   ConvergenceStudy study;
   std::vector<std::vector<double>> su(levels), sv(levels);

@@ -1,5 +1,6 @@
 // The `membrane` program: thin CLI over lamina::membrane (run, converge).
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 #include "membrane/converge.hpp"
 #include "membrane/io/case_file.hpp"
 #include "membrane/loads/blast.hpp"
@@ -70,6 +71,7 @@ int main(int argc, char** argv) {
     membrane::MaterialSources sources{library, ""};
     const bool quiet = json; // ProgressLine itself logs sparsely when stderr is not a tty
     if (run->parsed()) {
+      const core::InterruptGuard interrupts; // SIGINT/SIGTERM end the run cleanly
       const auto model = membrane::readCase(case_path, overrides, sources);
       membrane::RunOptions opt;
       if (out_dir.empty()) // never litter the working directory
@@ -91,6 +93,9 @@ int main(int argc, char** argv) {
       else
         std::cout << study.toTable();
     }
+  } catch (const Interrupted& e) {
+    std::cerr << "membrane: " << e.what() << "\n";
+    return e.exitCode();
   } catch (const DivergenceError& e) {
     std::cerr << "membrane: diverged: " << e.what() << "\n";
     return kExitDivergence;

@@ -3,6 +3,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/interrupt.hpp"
 #include "core/progress.hpp"
 #include "membrane/io/output.hpp"
 #include "membrane/simulation.hpp"
@@ -29,17 +30,27 @@ public:
     Simulation sim(model_); // assemble K, M; build A; set up its solver
     openOutputs(sim);
     const double dt = sim.integrator().timeStep();
+    if (!(model_.time.t_end / dt <= kMaxSteps)) // the explicit stable step may be tiny
+      throw Error("t_end / dt = " + core::formatShort(model_.time.t_end / dt) + " steps; at most " +
+                      core::formatShort(kMaxSteps),
+                  {"", 0, "time.dt"});
     // Newmark: t_end is a multiple of dt by the case; explicit: cover t_end.
     const long steps = model_.time.integrator == IntegratorKind::Newmark
                            ? std::lround(model_.time.t_end / dt)
                            : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
     core::ProgressLine progress("steps", std::max(1L, steps), opt_.quiet);
-    record(sim, true, true);
     std::optional<DivergenceError> failure;
+    try { // the initial state too: a non-finite start is a divergence at step 0
+      record(sim, true, true);
+    } catch (const DivergenceError& e) {
+      failure = e;
+    }
     const auto step_start = std::chrono::steady_clock::now();
-    for (long s = 1; s <= steps; ++s) {
+    int interrupted = 0; // SIGINT/SIGTERM: stop after this step, outputs as they are
+    for (long s = 1; s <= steps && !failure && !interrupted; ++s) {
       try {
         sim.step();
+        interrupted = core::interruptSignal();
         const bool last = s == steps;
         const int fe = model_.output.field_every;
         record(sim, last || (fe > 0 && s % fe == 0), last || s % model_.output.energy_every == 0);
@@ -60,9 +71,18 @@ public:
     nlohmann::json summary = summarize(sim);
     if (failure)
       summary["diverged"] = failure->message();
+    summary["interrupted"] = interrupted != 0;
+    if (interrupted)
+      summary["signal"] = core::signalName(interrupted);
     core::writeFileAtomically(opt_.out_dir / "summary.json", summary.dump(2) + "\n");
     if (failure)
       throw *failure;
+    if (interrupted)
+      throw Interrupted(interrupted, "interrupted by " + core::signalName(interrupted) +
+                                         " at t = " + core::formatShort(sim.time()) + " s (step " +
+                                         std::to_string(sim.steps()) + " of " +
+                                         std::to_string(steps) + "); outputs written to " +
+                                         opt_.out_dir.string());
     return summary;
   }
 

@@ -84,20 +84,27 @@ Eigen::Vector3i readLattice(const core::TableReader& t, const std::string& key) 
   return d.cast<int>();
 }
 
-/// `resolution = N` or `[N1, N2, N3]`, integers
+/// `resolution = N` or `[N1, N2, N3]`, integers in [2, kMaxResolution]
+/// (checked before any cast, so no value wraps round to a small one)
 std::array<int, 3> numberList(const core::TableReader& c, const std::string& key) {
   const toml::node* res = c.tomlTable().get(key);
+  const std::string range = "each count must lie in [2, " + std::to_string(kMaxResolution) + "]";
   if (!res->is_array()) {
-    const auto n = static_cast<int>(c.getInt(key));
+    const auto n = static_cast<int>(c.getIntIn(key, 2, kMaxResolution));
     return {n, n, n};
   }
   const auto v = c.getDoubleArray(key);
   if (v.size() != 3)
     c.fail(key, "must be N or [N1, N2, N3]");
-  for (double x : v)
-    if (x != std::floor(x) || x < 0 || x > 1e9)
+  std::array<int, 3> n{};
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (v[i] != std::floor(v[i]))
       c.fail(key, "must be integers");
-  return {static_cast<int>(v[0]), static_cast<int>(v[1]), static_cast<int>(v[2])};
+    if (!(v[i] >= 2 && v[i] <= kMaxResolution))
+      c.fail(key, range);
+    n[i] = static_cast<int>(v[i]);
+  }
+  return n;
 }
 
 double positive(const core::TableReader& t, const std::string& key) {
@@ -155,28 +162,28 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
     const auto c = t.getDoubleArray("lattice");
     if (c.size() != 3)
       t.fail("lattice", "must give 3 counts [n1, n2, n3]");
+    double copies = 1;
     for (int i = 0; i < 3; ++i) {
-      if (!(c[static_cast<std::size_t>(i)] >= 1) ||
-          c[static_cast<std::size_t>(i)] != std::floor(c[static_cast<std::size_t>(i)]))
+      const double ci = c[static_cast<std::size_t>(i)];
+      if (!(ci >= 1) || ci != std::floor(ci))
         t.fail("lattice", "counts must be positive integers");
-      g.lattice[static_cast<std::size_t>(i)] = static_cast<int>(c[static_cast<std::size_t>(i)]);
+      copies *= ci;
+      if (copies > static_cast<double>(kMaxInclusions))
+        t.fail("lattice", "at most " + std::to_string(kMaxInclusions) +
+                              " inclusions per cell (placement tests every pair)");
+      g.lattice[static_cast<std::size_t>(i)] = static_cast<int>(ci);
     }
   } else if (placement == "random") {
     g.placement = Placement::Random;
     g.seed = static_cast<std::uint64_t>(t.getInt("seed", 1));
-    g.max_attempts = static_cast<int>(t.getInt("max_attempts", 200000));
-    if (g.max_attempts <= 0)
-      t.fail("max_attempts", "must be positive");
+    g.max_attempts = static_cast<int>(t.getIntIn("max_attempts", 1, kMaxAttempts, 200000));
   } else {
     t.fail("placement", "unknown placement '" + placement + "' (single, lattice, random)");
   }
   if (t.has("count")) {
     if (g.placement != Placement::Random)
       t.fail("count", "count applies to random placement (use lattice = [n1, n2, n3])");
-    const auto n = t.getInt("count");
-    if (n <= 0)
-      t.fail("count", "must be positive");
-    g.count = static_cast<int>(n);
+    g.count = static_cast<int>(t.getIntIn("count", 1, kMaxInclusions));
   }
   if (t.has("volume_fraction")) {
     const double f = t.getDouble("volume_fraction");
@@ -242,9 +249,6 @@ CellSpec readCellString(const std::string& text, const std::string& source,
     if (c.has("composite_voxels"))
       cell.composite_voxels = c.getBool("composite_voxels", true);
   }
-  for (int n : cell.resolution)
-    if (!cell.image && (n < 2 || n > 4096))
-      c.fail("resolution", "each count must lie in [2, 4096]");
   if (c.has("size")) {
     const toml::node* s = c.tomlTable().get("size");
     if (s->is_array())
@@ -295,12 +299,7 @@ CellSpec readCellString(const std::string& text, const std::string& source,
 }
 
 CellSpec readCell(const std::filesystem::path& path, const CatalogProvider& catalog) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw Error("cannot open cell file", {path.string(), 0, ""});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return readCellString(ss.str(), path.string(), catalog);
+  return readCellString(core::readInputFile(path), path.string(), catalog);
 }
 
 } // namespace lamina::micro

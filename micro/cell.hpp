@@ -38,6 +38,14 @@
 
 namespace lamina::micro {
 
+/// Most voxels along one direction (4096^3 voxels already need ~1 TB).
+inline constexpr int kMaxResolution = 4096;
+/// Most inclusions in one cell: placement tests every pair for overlap, so
+/// the work grows with the square of the count.
+inline constexpr std::int64_t kMaxInclusions = 10000;
+/// Most random placement attempts per inclusion.
+inline constexpr std::int64_t kMaxAttempts = 1000000;
+
 /// How the inclusions of a group are placed.
 enum class Placement { Single, Lattice, Random };
 

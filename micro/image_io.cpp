@@ -1,6 +1,6 @@
 #include "micro/image_io.hpp"
 
-#include "core/memory.hpp"
+#include "core/resources.hpp"
 #include "micro/image_formats.hpp"
 
 #include <algorithm>
@@ -113,7 +113,7 @@ void imageError(const ImageSource& src, const std::string& message) {
 
 void checkImageMemory(const ImageSource& src, std::size_t voxels, std::size_t bytes_per_voxel) {
   // the file's bytes plus the int32 labels plus one reordered/cropped copy
-  const std::uint64_t need = static_cast<std::uint64_t>(voxels) * (bytes_per_voxel + 8);
+  const double need = static_cast<double>(voxels) * static_cast<double>(bytes_per_voxel + 8);
   core::requireMemory(
       need, "reading image " + src.path.string() + " (" + std::to_string(voxels) + " voxels)",
       {src.cell_file, 0, src.key},

@@ -43,7 +43,8 @@ void writePhaseMap(const UnitCell& cell, const std::vector<std::string>& phase_n
     << "</DataItem>\n   </Geometry>\n   <Attribute Name=\"phase\" Center=\"Cell\" "
        "AttributeType=\"Scalar\">\n    <DataItem Dimensions=\""
     << cell.n[0] << " " << cell.n[1] << " " << cell.n[2]
-    << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5.filename().string()
+    << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">"
+    << core::xmlEscape(h5.filename().string())
     << ":/phases</DataItem>\n   </Attribute>\n  </Grid>\n </Domain>\n</Xdmf>\n";
   std::filesystem::path xdmf = h5;
   xdmf.replace_extension(".xdmf");

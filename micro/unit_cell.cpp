@@ -1,6 +1,7 @@
 #include "micro/unit_cell.hpp"
 
 #include "core/error.hpp"
+#include "core/resources.hpp"
 #include "micro/composite_voxel.hpp"
 #include "micro/image_cell.hpp"
 
@@ -63,15 +64,30 @@ std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>
   const double V = spec.size.prod();
   target.clear();
   analytic.clear();
+  std::int64_t total = 0;
   for (const InclusionGroup& g : spec.groups) {
     Inclusion proto = g.prototype;
     int copies = 1;
     if (g.placement == Placement::Lattice)
       copies = g.lattice[0] * g.lattice[1] * g.lattice[2];
-    else if (g.placement == Placement::Random)
-      copies = g.count > 0 ? g.count
-                           : std::max(1, static_cast<int>(std::lround(*g.volume_fraction * V /
-                                                                      proto.volume(spec.size))));
+    else if (g.placement == Placement::Random && g.count > 0)
+      copies = g.count;
+    else if (g.placement == Placement::Random) {
+      // copies of the prototype's size that reach the fraction; checked as a
+      // double before the cast (a tiny radius asks for billions)
+      const double wanted = std::round(*g.volume_fraction * V / proto.volume(spec.size));
+      if (!(wanted <= static_cast<double>(kMaxInclusions)))
+        groupError(spec, g,
+                   "volume_fraction with this inclusion size needs " + std::to_string(wanted) +
+                       " inclusions; at most " + std::to_string(kMaxInclusions) +
+                       " per cell: give count or larger inclusions");
+      copies = std::max(1, static_cast<int>(wanted));
+    }
+    total += copies;
+    if (total > kMaxInclusions)
+      groupError(spec, g,
+                 "the cell's groups hold " + std::to_string(total) + " inclusions; at most " +
+                     std::to_string(kMaxInclusions) + " per cell (placement tests every pair)");
     if (g.volume_fraction) {
       // scale all lengths so that `copies` inclusions reach the target exactly
       const double s = std::pow(*g.volume_fraction * V / (copies * proto.volume(spec.size)),
@@ -202,7 +218,15 @@ UnitCell buildCell(const CellSpec& spec, std::array<int, 3> n) {
     return buildImageCell(spec);
   }
   for (int d : n)
-    LAMINA_CHECK(d >= 2, "resolution must be at least 2 voxels per direction");
+    if (d < 2 || d > kMaxResolution)
+      throw Error("resolution must be in [2, " + std::to_string(kMaxResolution) +
+                      "] voxels per direction, got " + std::to_string(d),
+                  {spec.file, 0, "resolution"});
+  // The phase map (4 B per voxel) and its copy on the way to HDF5.
+  core::requireMemory(8.0 * double(n[0]) * double(n[1]) * double(n[2]),
+                      "a phase map of " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
+                          " x " + std::to_string(n[2]) + " voxels",
+                      {spec.file, 0, "resolution"});
   UnitCell cell;
   cell.n = n;
   cell.size = spec.size;

@@ -3,6 +3,9 @@
 #include "materials/material_source.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/names.hpp"
+#include "core/resources.hpp"
 #include "core/toml_reader.hpp"
 #include "materials/catalog.hpp"
 #include "materials/layup.hpp"
@@ -115,6 +118,22 @@ int regionIndex(const Mesh& m, const std::string& name, const core::TableReader&
   r.fail(key, "mesh " + m.source + " has no region '" + name + "' (regions: " + have + ")");
 }
 
+/// The node nearest to @p p, which must lie on mesh @p m: within its longest
+/// edge of a node (a point off the mesh is a typo, not a request for the
+/// nearest boundary node).
+int nodeAt(const Mesh& m, const Eigen::Vector2d& p, const core::TableReader& r,
+           const std::string& key) {
+  const int i = m.nearestNode(p);
+  if (i < 0 || !((m.nodes[i] - p).norm() <= m.maxEdge())) {
+    const auto [x0, x1, y0, y1] = m.bounds();
+    r.fail(key, "point (" + core::formatShort(p.x()) + ", " + core::formatShort(p.y()) +
+                    ") lies outside mesh " + m.source + " (x in [" + core::formatShort(x0) + ", " +
+                    core::formatShort(x1) + "], y in [" + core::formatShort(y0) + ", " +
+                    core::formatShort(y1) + "])");
+  }
+  return i;
+}
+
 bool inBox(const Eigen::Vector2d& p, const std::array<double, 4>& b, double tol) {
   return p.x() >= b[0] - tol && p.x() <= b[1] + tol && p.y() >= b[2] - tol && p.y() <= b[3] + tol;
 }
@@ -137,7 +156,7 @@ std::vector<int> selectNodes(const Mesh& m, const Selector& s, const core::Table
       if (inBox(m.nodes[i], s.box, tol))
         out.push_back(i);
   } else if (s.kind == "at") {
-    out.push_back(m.nearestNode(s.at));
+    out.push_back(nodeAt(m, s.at, r, "at"));
   } else if (s.kind == "region") {
     const int reg = regionIndex(m, s.name, r, "region");
     std::set<int> nodes;
@@ -205,6 +224,9 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
       r.fail("nx", "must be in [1, 100000]");
     if (ny < 1 || ny > 100000)
       r.fail("ny", "must be in [1, 100000]");
+    requireRunMemory(double(nx + 1) * double(ny + 1),
+                     "a " + std::to_string(nx) + " x " + std::to_string(ny) + " rectangle",
+                     {r.file(), 0, r.path("nx")});
     return structuredRectangle(Lx, Ly, static_cast<int>(nx), static_cast<int>(ny));
   }
   if (type == "gmsh") {
@@ -324,7 +346,7 @@ Section readSection(const core::TableReader& r, materials::MaterialSource& res, 
     }
     materials::Material m;
     try {
-      m = materials::makeLayup("case layup", plies, [&](const std::string& n) {
+      m = materials::makeLayup("case-layup", plies, [&](const std::string& n) {
         return lookupMaterial(res, n, r, "plies");
       });
     } catch (const Error& e) {
@@ -441,6 +463,15 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
     ts.t_end = t.getDouble("t_end");
     if (!(ts.t_end > 0))
       t.fail("t_end", "t_end must be > 0");
+    // The run takes round(t_end / dt) steps: at least one, and a bounded
+    // number (an explicit run without dt is checked once its step is known).
+    const double steps = ts.dt > 0 ? std::round(ts.t_end / ts.dt) : 1.0;
+    if (!(steps >= 1))
+      t.fail("t_end", "t_end = " + core::formatShort(ts.t_end) + " s is less than half of dt = " +
+                          core::formatShort(ts.dt) + " s: the run would take no step");
+    if (!(steps <= kMaxSteps))
+      t.fail("dt", "t_end / dt = " + core::formatShort(steps) + " steps; at most " +
+                       core::formatShort(kMaxSteps) + " (raise dt or lower t_end)");
     ts.beta1 = t.getDouble("beta1", 0.5);
     ts.beta2 = t.getDouble("beta2", 0.5);
     if (ts.beta1 < 0 || ts.beta1 > 1)
@@ -498,6 +529,8 @@ std::vector<int> readConstraints(const core::TableReader& root, Model& model) {
   std::vector<int> owner(ndof, -1);
   auto addConstraint = [&](const core::TableReader& r, Constraint c, const std::vector<int>& nodes,
                            const std::string& comps, const Eigen::Vector3d& vel) {
+    if (const std::string why = core::nameProblem(c.name); !why.empty())
+      r.fail("name", "constraint set name " + why); // names CSV columns
     for (char ch : comps)
       if (ch != 'x' && ch != 'y' && ch != 'z')
         r.fail("components", "components is a subset of \"xyz\"");
@@ -852,11 +885,11 @@ void readProbes(const core::TableReader& root, Model& model) {
   for (const auto& r : root.tableArray("probe")) {
     Probe p;
     p.name = r.getString("name");
-    if (p.name.empty() || p.name.find_first_of(",\" ") != std::string::npos)
-      r.fail("name", "probe name must be non-empty without commas, quotes or spaces");
+    if (const std::string why = core::nameProblem(p.name); !why.empty())
+      r.fail("name", "probe name " + why); // names a CSV column
     if (!names.insert(p.name).second)
       r.fail("name", "duplicate probe '" + p.name + "'");
-    p.node = mesh.nearestNode(readPoint(r, "at"));
+    p.node = nodeAt(mesh, readPoint(r, "at"), r, "at");
     model.probes.push_back(p);
   }
 }
@@ -878,6 +911,10 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
   core::TableReader root(doc, path.string());
   Model model;
   model.name = root.getString("name", path.stem().string());
+  // The name becomes <name>.h5 and <name>.xdmf in the output folder.
+  if (const std::string why = core::nameProblem(model.name); !why.empty())
+    root.fail("name", "case name '" + model.name + "' " + why +
+                          (root.has("name") ? "" : " (it is the file's stem: set name = ...)"));
   (void)root.getString("description", "");
   model.compare_without_drag = root.getBool("compare_without_drag", false);
   model.kind = readModelKind(root);

@@ -76,7 +76,7 @@ void FieldWriter::write(double t, const Eigen::VectorXd& u, const Eigen::VectorX
 void FieldWriter::writeIndex() const {
   const auto n = mesh_.numNodes();
   const auto ne = mesh_.numElements();
-  const std::string h5 = h5_path_.filename().string();
+  const std::string h5 = core::xmlEscape(h5_path_.filename().string());
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"
     << "  <Grid Name=\"membrane\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";

@@ -1,6 +1,8 @@
 #include "membrane/model/mesh.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/resources.hpp"
 
 #include <gmsh.h>
 
@@ -60,6 +62,15 @@ double Mesh::maxEdge() const {
     for (int k = 0; k < 3; ++k)
       h = std::max(h, (nodes[t[k]] - nodes[t[(k + 1) % 3]]).norm());
   return h;
+}
+
+void requireRunMemory(double nodes, const std::string& what, const ErrorContext& context) {
+  if (!(nodes <= kMaxNodes))
+    throw Error(what + " has " + core::formatShort(nodes) + " nodes; at most " +
+                    core::formatShort(kMaxNodes),
+                context);
+  core::requireMemory(nodes * kRunBytesPerNode,
+                      "a run on " + what + " (" + core::formatShort(nodes) + " nodes)", context);
 }
 
 void finalizeMesh(Mesh& mesh) {
@@ -136,6 +147,39 @@ namespace {
 /// gmsh keeps global state: one reader at a time.
 std::mutex gmsh_mutex;
 
+/// Nodes the surfaces of the open gmsh model will get, from its meshed
+/// curves: with the mean boundary edge h and the surface area A, a mesh of
+/// near-equilateral triangles has about A / (sqrt(3)/4 h^2) triangles and
+/// half as many nodes.
+double estimateSurfaceNodes() {
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> etags, enodes;
+  double length = 0;
+  std::size_t edges = 0;
+  gmsh::vectorpair curves;
+  gmsh::model::getEntities(curves, 1);
+  for (const auto& [dim, tag] : curves) {
+    gmsh::model::mesh::getElements(types, etags, enodes, dim, tag);
+    for (const auto& e : etags)
+      edges += e.size();
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
+    length += std::hypot(x1 - x0, y1 - y0); // at most the curve's length
+  }
+  gmsh::vectorpair surfaces;
+  gmsh::model::getEntities(surfaces, 2);
+  double area = 0;
+  for (const auto& [dim, tag] : surfaces) {
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
+    area += (x1 - x0) * (y1 - y0); // at least the surface's area
+  }
+  if (edges == 0 || !(length > 0))
+    return 0;
+  const double h = length / double(edges); // at most the mean edge: an over-estimate follows
+  return 0.5 * area / (std::sqrt(3.0) / 4 * h * h);
+}
+
 struct GmshSession {
   GmshSession() {
     gmsh::initialize(0, nullptr, false);
@@ -160,8 +204,21 @@ Mesh readGmsh(const std::filesystem::path& path) {
   m.source = file;
   try {
     gmsh::open(file);
-    if (ext == ".geo")
+    if (ext == ".geo") {
+      // Mesh the curves first and refuse before the surfaces when their edge
+      // length asks for more than fits. A floor of 1e-6 of the model's size
+      // keeps even this step short for a tiny lc; any mesh it changes is
+      // refused (its estimate exceeds kMaxNodes), so a kept mesh is as asked.
+      double x0, y0, z0, x1, y1, z1, floor_before = 0;
+      gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+      gmsh::option::getNumber("Mesh.MeshSizeMin", floor_before);
+      gmsh::option::setNumber("Mesh.MeshSizeMin",
+                              std::max(floor_before, 1e-6 * std::hypot(x1 - x0, y1 - y0)));
+      gmsh::model::mesh::generate(1);
+      gmsh::option::setNumber("Mesh.MeshSizeMin", floor_before);
+      requireRunMemory(estimateSurfaceNodes(), "the mesh of " + file, ErrorContext{file, 0, "lc"});
       gmsh::model::mesh::generate(2);
+    }
 
     std::vector<std::size_t> tags;
     std::vector<double> coord, param;

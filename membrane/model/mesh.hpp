@@ -11,6 +11,8 @@
 /// use (x, y); point() and area3() the 3D position. Boundary node sets are named: physical curves
 /// of a gmsh file, or "left", "right", "bottom", "top", "edges" for the structured rectangle.
 
+#include "core/error.hpp"
+
 #include <Eigen/Dense>
 
 #include <array>
@@ -66,6 +68,20 @@ Mesh structuredRectangle(double Lx, double Ly, int nx, int ny);
 /// points become node sets. Throws lamina::Error naming the file when it is
 /// missing, unreadable, or has no triangles.
 Mesh readGmsh(const std::filesystem::path& path);
+
+/// Memory a run needs per mesh node, bytes: peak resident size of `membrane
+/// run` (CG solver) grows by 4.4 kB per node between nx = 100 and nx = 300
+/// of cases/membrane/case3.toml (/usr/bin/time -f %M); 5 kB with margin.
+inline constexpr double kRunBytesPerNode = 5e3;
+/// Most nodes of a mesh: 3 DOF per node are indexed by int.
+inline constexpr double kMaxNodes = 2e8;
+/// Most time steps of a run (round(t_end / dt)); a longer run is refused.
+inline constexpr double kMaxSteps = 1e8;
+
+/// Refuses (lamina::Error with @p context) a mesh of @p nodes nodes that
+/// exceeds kMaxNodes or whose run would need more memory than available
+/// (kRunBytesPerNode each); @p what names the mesh in the message.
+void requireRunMemory(double nodes, const std::string& what, const ErrorContext& context);
 
 /// Orients triangles counter-clockwise and checks the mesh (no degenerate
 /// triangle, indices in range). Throws lamina::Error naming @p mesh.source.

@@ -215,7 +215,8 @@ TEST(Program, JsonInterface) {
   // The phase map is in the side file the entry names (relative to the
   // library's folder): 8^3 voxels, and its inclusion voxels give back the
   // volume fraction the JSON reports.
-  const auto& entry = materials::Library(lib).get("s8");
+  const materials::Library library(lib); // outlives the entry it hands out (ASan: was a
+  const auto& entry = library.get("s8"); // reference into a destroyed temporary)
   ASSERT_FALSE(entry.side_file.empty());
   const micro::UnitCell back = micro::readPhaseMap(dir / entry.side_file, 2);
   EXPECT_EQ(back.phase.size(), 512u);

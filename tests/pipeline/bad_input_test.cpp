@@ -6,54 +6,13 @@
 /// expected substrings are the user's own input (file names, keys, material
 /// names), not text copied from the code under test.
 
+#include "program.hpp"
+
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <string>
-
-namespace fs = std::filesystem;
+using namespace lamina::test;
 
 namespace {
-
-const fs::path kBin = fs::path(LAMINA_BINARY_DIR) / "bin";
-const fs::path kCases = fs::path(LAMINA_SOURCE_DIR) / "cases";
-
-struct Result {
-  int code;
-  std::string output; // stdout + stderr
-};
-
-Result run(const std::string& command) {
-  const fs::path log =
-      fs::temp_directory_path() / ("lamina_bad_input_" + std::to_string(::getpid()) + ".log");
-  const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  fs::remove(log);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-void write(const fs::path& p, const std::string& text) {
-  std::ofstream out(p, std::ios::binary);
-  out << text;
-}
-
-bool have(const std::string& program) {
-  return fs::exists(kBin / program);
-}
 
 /// A fresh folder with a valid library holding one catalog entry.
 class BadInput : public ::testing::Test {

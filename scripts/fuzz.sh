@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer target of BUILD/fuzz for SECONDS each on a corpus
+# seeded from cases/ (and fuzz/seeds/); the corpus grows in BUILD/corpus and
+# is kept between runs. A crash, an abort, a sanitizer report or a leak
+# stops the script with the reproducer in BUILD/fuzz-artifacts/.
+#   scripts/fuzz.sh [BUILD] [SECONDS]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD=${1:-build-fuzz}
+SECONDS_EACH=${2:-60}
+corpus=$BUILD/corpus
+artifacts=$BUILD/fuzz-artifacts
+mkdir -p "$artifacts"
+seed() { # seed TARGET FILES...
+  local dir=$corpus/$1
+  shift
+  mkdir -p "$dir"
+  for f in "$@"; do cp -n "$f" "$dir/$(basename "$f")" 2>/dev/null || true; done
+}
+seed case cases/membrane/*.toml cases/demo/*.toml
+seed cell cases/cells/*.toml
+seed catalog materials/catalog.toml
+seed library fuzz/seeds/library/*.toml
+mkdir -p "$corpus/msh"
+for geo in cases/meshes/*.geo; do # .msh seeds meshed from the .geo files
+  out=$corpus/msh/$(basename "${geo%.geo}").msh
+  [ -f "$out" ] || gmsh -2 -format msh41 "$geo" -o "$out" > /dev/null
+done
+status=0
+for target in case cell catalog library msh; do
+  echo "fuzz: $target for ${SECONDS_EACH} s" >&2
+  if ! "$BUILD/fuzz/${target}_fuzzer" "$corpus/$target" -max_total_time="$SECONDS_EACH" \
+      -timeout=25 -rss_limit_mb=3072 -max_len=65536 -print_final_stats=1 \
+      -artifact_prefix="$artifacts/${target}-" > "$BUILD/fuzz-$target.log" 2>&1; then
+    echo "fuzz: $target FAILED; see $BUILD/fuzz-$target.log and $artifacts/" >&2
+    tail -40 "$BUILD/fuzz-$target.log" >&2
+    status=1
+  else
+    grep -E "^stat::number_of_executed_units|^#[0-9]+.*DONE" "$BUILD/fuzz-$target.log" >&2 || true
+  fi
+done
+exit $status

@@ -1,0 +1,63 @@
+#pragma once
+/// @file program.hpp
+/// @brief Running the built programs as a user would, for the pipeline
+/// tests: a command's exit code and output, whole-file reads and writes.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace lamina::test {
+
+namespace fs = std::filesystem;
+
+/// Where the programs are built.
+inline const fs::path kBin = fs::path(LAMINA_BINARY_DIR) / "bin";
+/// The runnable cases of the source tree.
+inline const fs::path kCases = fs::path(LAMINA_SOURCE_DIR) / "cases";
+
+/// Exit code and combined output of a command.
+struct Result {
+  int code;
+  std::string output; // stdout + stderr
+};
+
+/// Runs @p command through the shell.
+inline Result run(const std::string& command) {
+  const fs::path log =
+      fs::temp_directory_path() / ("lamina_bad_input_" + std::to_string(::getpid()) + ".log");
+  const int status = std::system((command + " > '" + log.string() + "' 2>&1").c_str());
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  fs::remove(log);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+/// @return the content of @p p ("" if absent)
+inline std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+/// Writes @p text to @p p.
+inline void write(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary);
+  out << text;
+}
+
+/// @return whether @p program was built
+inline bool have(const std::string& program) {
+  return fs::exists(kBin / program);
+}
+
+} // namespace lamina::test
