@@ -347,31 +347,17 @@ TEST(ConcurrentWriters, ForkedProcessesBothLand) {
   const auto path = dir / "library.toml";
   const int perChild = 20;
   std::vector<pid_t> kids;
-  for (const char* prefix : {"left", "right"}) {
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      int rc = 0;
-      try {
-        for (int k = 0; k < perChild; ++k) {
-          mat::Material m;
-          m.name = std::string(prefix) + std::to_string(k);
-          m.C = mat::Stiffness::isotropic(1e9 * (k + 1), 0.25);
-          m.density = 1000 + k;
-          mat::Library(path).add(m);
-        }
-      } catch (...) {
-        rc = 1;
+  for (const char* prefix : {"left", "right"})
+    kids.push_back(lamina::test::forkChild([&path, prefix] {
+      for (int k = 0; k < perChild; ++k) {
+        mat::Material m;
+        m.name = std::string(prefix) + std::to_string(k);
+        m.C = mat::Stiffness::isotropic(1e9 * (k + 1), 0.25);
+        m.density = 1000 + k;
+        mat::Library(path).add(m);
       }
-      ::_exit(rc);
-    }
-    kids.push_back(pid);
-  }
-  for (pid_t pid : kids) {
-    int status = 0;
-    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  }
+    }));
+  lamina::test::expectChildrenSucceed(kids);
   const mat::Library lib(path);
   EXPECT_EQ(lib.names().size(), static_cast<std::size_t>(2 * perChild));
   for (int k = 0; k < perChild; ++k) {
@@ -415,23 +401,16 @@ TEST(ConcurrentWriters, KilledWriterLeavesReadableLibrary) {
   const auto path = dir / "library.toml";
   std::size_t previous = 0;
   for (int round = 0; round < 3; ++round) {
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      try {
-        mat::Library lib(path);
-        for (std::size_t k = lib.names().size(); k < 100000; ++k) {
-          mat::Material m;
-          m.name = "w" + std::to_string(k);
-          m.C = mat::Stiffness::isotropic(1e9, 0.3);
-          m.density = 1000;
-          lib.add(m);
-        }
-      } catch (...) {
-        ::_exit(1);
+    const pid_t pid = lamina::test::forkChild([&path] {
+      mat::Library lib(path);
+      for (std::size_t k = lib.names().size(); k < 100000; ++k) {
+        mat::Material m;
+        m.name = "w" + std::to_string(k);
+        m.C = mat::Stiffness::isotropic(1e9, 0.3);
+        m.density = 1000;
+        lib.add(m);
       }
-      ::_exit(0);
-    }
+    });
     // Wait until the writer has landed at least one entry of this round
     // (robust to a loaded machine), then kill it a little later, mid-work.
     for (int wait = 0; wait < 2000; ++wait) {

@@ -203,28 +203,14 @@ TEST(LibrarySideFiles, ConcurrentWritersOfOneNameKeepEntryAndSideFileTogether) {
   TempDir dir;
   const auto path = dir / "lib.toml";
   std::vector<pid_t> kids;
-  for (int who = 1; who <= 2; ++who) {
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      int rc = 0;
-      try {
-        for (int k = 0; k < 10; ++k) {
-          const double density = 1000.0 * who + k;
-          mat::Library(path).add(iso("x", density), true, sideText(std::to_string(density)));
-        }
-      } catch (...) {
-        rc = 1;
+  for (int who = 1; who <= 2; ++who)
+    kids.push_back(lamina::test::forkChild([&path, who] {
+      for (int k = 0; k < 10; ++k) {
+        const double density = 1000.0 * who + k;
+        mat::Library(path).add(iso("x", density), true, sideText(std::to_string(density)));
       }
-      ::_exit(rc);
-    }
-    kids.push_back(pid);
-  }
-  for (pid_t pid : kids) {
-    int status = 0;
-    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  }
+    }));
+  lamina::test::expectChildrenSucceed(kids);
   const mat::Library lib(path);
   EXPECT_EQ(readFile(dir / lib.get("x").side_file), std::to_string(lib.get("x").density));
   EXPECT_TRUE(debris(dir.path(), path).empty());
@@ -237,18 +223,11 @@ TEST(LibrarySideFiles, KilledWriterLeavesNoOrphans) {
   TempDir dir;
   const auto path = dir / "lib.toml";
   for (int round = 0; round < 4; ++round) {
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      try {
-        for (int k = 0; k < 100000; ++k)
-          mat::Library(path).add(iso("e" + std::to_string(k % 7), 1000 + k), true,
-                                 sideText(std::to_string(1000.0 + k)));
-      } catch (...) {
-        ::_exit(1);
-      }
-      ::_exit(0);
-    }
+    const pid_t pid = lamina::test::forkChild([&path] {
+      for (int k = 0; k < 100000; ++k)
+        mat::Library(path).add(iso("e" + std::to_string(k % 7), 1000 + k), true,
+                               sideText(std::to_string(1000.0 + k)));
+    });
     ::usleep(static_cast<useconds_t>(20000 + 13000 * round));
     ::kill(pid, SIGKILL);
     int status = 0;

@@ -12,10 +12,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
 
 namespace lamina::test {
 
@@ -108,6 +112,35 @@ inline int lineCount(const std::string& text) {
   if (!text.empty() && text.back() != '\n')
     ++n;
   return n;
+}
+
+/// Runs @p body in a forked child process and returns at once in the parent.
+/// The child exits 0 when @p body returns and 1 when it throws (the tests of
+/// concurrent library writers and of writers killed mid-write).
+/// @return the child's pid
+inline pid_t forkChild(const std::function<void()>& body) {
+  const pid_t pid = ::fork();
+  if (pid < 0)
+    throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    int rc = 0;
+    try {
+      body();
+    } catch (...) {
+      rc = 1;
+    }
+    ::_exit(rc);
+  }
+  return pid;
+}
+
+/// Waits for every child in @p kids and expects each to have exited with 0.
+inline void expectChildrenSucceed(const std::vector<pid_t>& kids) {
+  for (pid_t pid : kids) {
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "child " << pid;
+  }
 }
 
 } // namespace lamina::test
