@@ -3,6 +3,7 @@
 #include "core/interrupt.hpp"
 #include "membrane/converge.hpp"
 #include "membrane/io/case_file.hpp"
+#include "membrane/io/checkpoint.hpp"
 #include "membrane/loads/blast.hpp"
 #include "membrane/run.hpp"
 
@@ -35,6 +36,14 @@ int main(int argc, char** argv) {
   auto* run = app.add_subcommand("run", "run one case file");
   addCaseOptions(run, "case file (TOML)", "print summary.json on stdout");
   run->add_option("--out", out_dir, "output folder (default: out/<case file stem>)");
+  std::string restart_dir;
+  long stop_at_step = 0;
+  run->add_option("--restart", restart_dir,
+                  "continue the run whose outputs are in DIR from DIR/checkpoint.h5 "
+                  "(same case file and --set options)");
+  run->add_option("--stop-at-step", stop_at_step,
+                  "stop after step N with a checkpoint (continue later with --restart)")
+      ->check(CLI::PositiveNumber);
 
   auto* conv = app.add_subcommand("converge", "convergence study (paper section 4)");
   addCaseOptions(conv, "case file (TOML, structured mesh)", "print the rates as JSON");
@@ -74,10 +83,21 @@ int main(int argc, char** argv) {
       const core::InterruptGuard interrupts; // SIGINT/SIGTERM end the run cleanly
       const auto model = membrane::readCase(case_path, overrides, sources);
       membrane::RunOptions opt;
+      if (!restart_dir.empty()) { // a restart continues in the folder of the run
+        if (!out_dir.empty() && std::filesystem::weakly_canonical(out_dir) !=
+                                    std::filesystem::weakly_canonical(restart_dir))
+          throw Error("--out and --restart name different folders; a restart continues in the "
+                      "folder of the interrupted run",
+                      {"", 0, "--out"});
+        out_dir = restart_dir;
+      }
       if (out_dir.empty()) // never litter the working directory
         out_dir = (std::filesystem::path("out") / std::filesystem::path(case_path).stem()).string();
       opt.out_dir = out_dir;
       opt.quiet = quiet;
+      opt.restart = !restart_dir.empty();
+      opt.stop_at_step = stop_at_step;
+      opt.case_digest = membrane::caseDigest(case_path, overrides);
       const auto summary = membrane::runCase(model, opt);
       if (json)
         std::cout << summary.dump(2) << "\n";

@@ -5,6 +5,7 @@
 #include "core/format.hpp"
 #include "core/interrupt.hpp"
 #include "core/progress.hpp"
+#include "membrane/io/checkpoint.hpp"
 #include "membrane/io/output.hpp"
 #include "membrane/simulation.hpp"
 
@@ -26,9 +27,14 @@ public:
 
   nlohmann::json run() {
     const auto start = std::chrono::steady_clock::now();
+    if (opt_.restart && !std::filesystem::is_directory(opt_.out_dir))
+      throw Error("no output folder to restart from", {opt_.out_dir.string(), 0, ""});
     std::filesystem::create_directories(opt_.out_dir);
     Simulation sim(model_); // assemble K, M; build A; set up its solver
-    openOutputs(sim);
+    std::optional<Checkpoint> resumed;
+    if (opt_.restart)
+      resumed = resume(sim);
+    openOutputs(sim, resumed ? &resumed->data : nullptr);
     const double dt = sim.integrator().timeStep();
     if (!(model_.time.t_end / dt <= kMaxSteps)) // the explicit stable step may be tiny
       throw Error("t_end / dt = " + core::formatShort(model_.time.t_end / dt) + " steps; at most " +
@@ -40,14 +46,17 @@ public:
                            : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
     core::ProgressLine progress("steps", std::max(1L, steps), opt_.quiet);
     std::optional<DivergenceError> failure;
-    try { // the initial state too: a non-finite start is a divergence at step 0
-      record(sim, true, true);
-    } catch (const DivergenceError& e) {
-      failure = e;
-    }
+    if (!resumed)
+      try { // the initial state too: a non-finite start is a divergence at step 0
+        record(sim, true, true);
+      } catch (const DivergenceError& e) {
+        failure = e;
+      }
     const auto step_start = std::chrono::steady_clock::now();
     int interrupted = 0; // SIGINT/SIGTERM: stop after this step, outputs as they are
-    for (long s = 1; s <= steps && !failure && !interrupted; ++s) {
+    bool stopped = false;
+    const long ce = model_.output.checkpoint_every;
+    for (long s = sim.steps() + 1; s <= steps && !failure && !interrupted && !stopped; ++s) {
       try {
         sim.step();
         interrupted = core::interruptSignal();
@@ -58,6 +67,9 @@ public:
         failure = e;
         break;
       }
+      stopped = s == opt_.stop_at_step;
+      if (interrupted || stopped || (ce > 0 && s % ce == 0))
+        writeCheckpoint(sim);
       progress.update(s, "t = " + core::formatShort(sim.time(), 4));
     }
     step_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - step_start).count();
@@ -74,20 +86,24 @@ public:
     summary["interrupted"] = interrupted != 0;
     if (interrupted)
       summary["signal"] = core::signalName(interrupted);
+    if (stopped && !interrupted)
+      summary["stopped_at_step"] = sim.steps();
     core::writeFileAtomically(opt_.out_dir / "summary.json", summary.dump(2) + "\n");
     if (failure)
       throw *failure;
     if (interrupted)
-      throw Interrupted(interrupted, "interrupted by " + core::signalName(interrupted) +
-                                         " at t = " + core::formatShort(sim.time()) + " s (step " +
-                                         std::to_string(sim.steps()) + " of " +
-                                         std::to_string(steps) + "); outputs written to " +
-                                         opt_.out_dir.string());
+      throw Interrupted(interrupted,
+                        "interrupted by " + core::signalName(interrupted) +
+                            " at t = " + core::formatShort(sim.time()) + " s (step " +
+                            std::to_string(sim.steps()) + " of " + std::to_string(steps) +
+                            "); outputs and checkpoint " + "written to " + opt_.out_dir.string() +
+                            " (continue with --restart " + opt_.out_dir.string() + ")");
     return summary;
   }
 
 private:
-  void writeFields(const Simulation& sim) {
+  /// The element fields of the current state (with the failure map).
+  std::vector<CellField> fieldCells(const Simulation& sim) const {
     auto cells = sim.structure().cellFields(sim.u());
     if (sim.structure().hasFailureThresholds()) {
       const auto& f = sim.failure();
@@ -95,33 +111,130 @@ private:
       map.values.resize(static_cast<size_t>(model_.mesh.numElements()), -1.0);
       cells.push_back(std::move(map));
     }
-    fields_->write(sim.time(), sim.u(), sim.v(), cells);
+    return cells;
   }
 
-  void openOutputs(const Simulation& sim) {
-    if (model_.output.fields)
-      fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh,
-                                              sim.structure().deformedGeometry());
+  void writeFields(const Simulation& sim) {
+    fields_->write(sim.time(), sim.u(), sim.v(), fieldCells(sim));
+  }
+
+  /// Opens the outputs: new ones, or (@p resumed: a checkpoint's history)
+  /// those of the interrupted run, cut back to the checkpoint's step.
+  void openOutputs(const Simulation& sim, const History* resumed) {
+    Eigen::VectorXd bytes = Eigen::VectorXd::Zero(3);
+    if (resumed)
+      bytes = historyEntry(*resumed, "run/csv_bytes", 3);
+    auto table = [&](const char* file, const std::string& header, int k) {
+      if (!resumed)
+        return std::make_unique<CsvWriter>(opt_.out_dir / file, header);
+      return std::make_unique<CsvWriter>(opt_.out_dir / file, header,
+                                         static_cast<std::uintmax_t>(bytes[k]));
+    };
+    if (model_.output.fields) {
+      const bool deformed = sim.structure().deformedGeometry();
+      if (!resumed) {
+        fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh, deformed);
+      } else {
+        const Eigen::VectorXd times = historyEntry(*resumed, "run/field_times");
+        fields_ = std::make_unique<FieldWriter>(
+            opt_.out_dir, model_.name, model_.mesh, deformed,
+            std::vector<double>(times.data(), times.data() + times.size()), fieldCells(sim));
+      }
+    }
     std::string h = "t";
     for (const auto& p : model_.probes)
       for (const char* c : {"_ux", "_uy", "_uz", "_vx", "_vy", "_vz"})
         h += "," + p.name + c;
-    probes_ = std::make_unique<CsvWriter>(opt_.out_dir / "probes.csv", h);
-    energy_ = std::make_unique<CsvWriter>(
-        opt_.out_dir / "energy.csv",
-        "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance,micro_kinetic" +
-            std::string(extra_energy_ ? ",spring_work,damping_work" : ""));
+    probes_ = table("probes.csv", h, 0);
+    energy_ = table("energy.csv",
+                    "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance,"
+                    "micro_kinetic" +
+                        std::string(extra_energy_ ? ",spring_work,damping_work" : ""),
+                    1);
     const auto names = sim.reactionNames();
     if (!names.empty()) {
       std::string r = "t";
       for (const auto& c : names)
         for (const char* k : {"_Rx", "_Ry", "_Rz"})
           r += "," + c + k;
-      reactions_ = std::make_unique<CsvWriter>(opt_.out_dir / "reactions.csv", r);
+      reactions_ = table("reactions.csv", r, 2);
     }
-    peak_reaction_.assign(names.size(), 0.0);
-    probe_peak_.assign(model_.probes.size(), 0.0);
+    if (!resumed) {
+      peak_reaction_.assign(names.size(), 0.0);
+      probe_peak_.assign(model_.probes.size(), 0.0);
+    }
   }
+
+  /// The run's bookkeeping as a History: running maxima, the last energy
+  /// record, the bytes of each table and the times of the field series.
+  History bookkeeping() const {
+    History h;
+    h["run/maxima"] = (Eigen::VectorXd(6) << max_abs_w_, max_speed_, max_balance_, energy_scale_,
+                       max_disp_, peak_total_reaction_)
+                          .finished();
+    h["run/peak_reaction"] = Eigen::Map<const Eigen::VectorXd>(
+        peak_reaction_.data(), static_cast<Eigen::Index>(peak_reaction_.size()));
+    h["run/probe_peak"] = Eigen::Map<const Eigen::VectorXd>(
+        probe_peak_.data(), static_cast<Eigen::Index>(probe_peak_.size()));
+    const auto& e = last_energy_;
+    h["run/last_energy"] =
+        (Eigen::VectorXd(9) << e.kinetic, e.micro_kinetic, e.strain, e.external_work,
+         e.reaction_work, e.drag_work, e.spring_work, e.damping_work, e.balance)
+            .finished();
+    h["run/csv_bytes"] = Eigen::Vector3d(static_cast<double>(probes_->bytes()),
+                                         static_cast<double>(energy_->bytes()),
+                                         reactions_ ? static_cast<double>(reactions_->bytes()) : 0);
+    std::vector<double> times;
+    if (fields_)
+      times = fields_->times();
+    h["run/field_times"] =
+        Eigen::Map<const Eigen::VectorXd>(times.data(), static_cast<Eigen::Index>(times.size()));
+    return h;
+  }
+
+  /// Writes out_dir/checkpoint.h5: the simulation's history and the run's bookkeeping.
+  void writeCheckpoint(const Simulation& sim) const {
+    Checkpoint c{model_.name, digest(), bookkeeping()};
+    sim.save(c.data);
+    membrane::writeCheckpoint(checkpointPath(opt_.out_dir), c);
+  }
+
+  /// Reads out_dir/checkpoint.h5, checks it is this case's, restores @p sim
+  /// and the bookkeeping; @return the checkpoint.
+  Checkpoint resume(Simulation& sim) {
+    const auto path = checkpointPath(opt_.out_dir);
+    Checkpoint c = readCheckpoint(path);
+    const ErrorContext where{path.string(), 0, ""};
+    if (c.case_digest != digest())
+      throw Error("checkpoint belongs to another case ('" + c.case_name + "', digest " +
+                      c.case_digest + "; this case '" + model_.name + "' has digest " + digest() +
+                      "): restart with the case file and --set options of the interrupted run",
+                  where);
+    try {
+      sim.restore(c.data);
+      const auto& h = c.data;
+      const Eigen::VectorXd& m = historyEntry(h, "run/maxima", 6);
+      max_abs_w_ = m[0];
+      max_speed_ = m[1];
+      max_balance_ = m[2];
+      energy_scale_ = m[3];
+      max_disp_ = m[4];
+      peak_total_reaction_ = m[5];
+      const auto nr = static_cast<Eigen::Index>(sim.reactionNames().size());
+      const Eigen::VectorXd& pr = historyEntry(h, "run/peak_reaction", nr);
+      peak_reaction_.assign(pr.data(), pr.data() + nr);
+      const auto np = static_cast<Eigen::Index>(model_.probes.size());
+      const Eigen::VectorXd& pp = historyEntry(h, "run/probe_peak", np);
+      probe_peak_.assign(pp.data(), pp.data() + np);
+      const Eigen::VectorXd& e = historyEntry(h, "run/last_energy", 9);
+      last_energy_ = Energy{e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8]};
+    } catch (const Error& e) {
+      throw Error("checkpoint does not fit this run: " + e.message(), where);
+    }
+    return c;
+  }
+
+  std::string digest() const { return opt_.case_digest.empty() ? model_.name : opt_.case_digest; }
 
   void record(const Simulation& sim, bool fields, bool energy) {
     const auto& u = sim.u();
@@ -290,6 +403,10 @@ nlohmann::json runModel(const Model& model, const RunOptions& options) {
 nlohmann::json runCase(const Model& model, const RunOptions& options) {
   if (!model.compare_without_drag)
     return runModel(model, options);
+  if (options.restart || options.stop_at_step > 0)
+    throw Error("a case with compare_without_drag = true runs twice and cannot be checkpointed; "
+                "--restart and --stop-at-step need a single run",
+                {"", 0, "compare_without_drag"});
   auto peaks = [](const nlohmann::json& s) {
     double reaction = 0;
     for (const auto& [name, r] : s["reactions"].items())

@@ -4,8 +4,10 @@
 ///
 /// Writes into the output folder: <name>.xdmf + <name>.h5 (fields),
 /// probes.csv (t,<probe>_ux,_uy,_uz,_vx,_vy,_vz,...), energy.csv,
-/// reactions.csv (per constraint set, when there are constraints) and
-/// summary.json (written atomically last). On divergence the last finite
+/// reactions.csv (per constraint set, when there are constraints),
+/// checkpoint.h5 (every output.checkpoint_every steps, on SIGINT/SIGTERM
+/// and at RunOptions::stop_at_step; io/checkpoint.hpp) and summary.json
+/// (written atomically last). On divergence the last finite
 /// state is written, summary.json records the message and
 /// lamina::DivergenceError is rethrown (exit code 3).
 
@@ -21,6 +23,17 @@ namespace lamina::membrane {
 struct RunOptions {
   std::filesystem::path out_dir = "."; ///< output folder (created)
   bool quiet = false;                  ///< no progress line
+  /// Continue the run whose outputs and checkpoint.h5 are in out_dir, from
+  /// its checkpoint: the outputs are cut back to the checkpoint's step and
+  /// appended to, and the result is bit-identical to an uninterrupted run.
+  bool restart = false;
+  /// Stop after this step (counted from t = 0) with a checkpoint, as for an
+  /// interrupt but exiting normally (0: run to t_end).
+  long stop_at_step = 0;
+  /// Identifies the case in checkpoints (caseDigest() of the case file and
+  /// --set options); a restart refuses a checkpoint with another digest.
+  /// Empty: the model's name.
+  std::string case_digest;
 };
 
 /// Runs @p model and @return the summary object (also written to summary.json).

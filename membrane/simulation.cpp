@@ -83,6 +83,70 @@ void Simulation::step() {
     structure_->checkFailure(state_.t, state_.u, failure_);
 }
 
+namespace {
+constexpr const char* kIntegrator = "integrator/";
+} // namespace
+
+void Simulation::save(History& h) const {
+  h["state/time"] = Eigen::Vector2d(state_.t, static_cast<double>(state_.step));
+  h["state/u"] = state_.u;
+  h["state/v"] = state_.v;
+  h["state/a"] = state_.a;
+  h["works"] = (Eigen::VectorXd(6) << works_.external, works_.reaction, works_.drag, works_.spring,
+                works_.damping, works_.internal)
+                   .finished();
+  if (!failure_.time.empty()) {
+    const auto ne = static_cast<Eigen::Index>(failure_.time.size());
+    h["failure/time"] = Eigen::Map<const Eigen::VectorXd>(failure_.time.data(), ne);
+    Eigen::VectorXd c(ne);
+    for (Eigen::Index e = 0; e < ne; ++e)
+      c[e] = static_cast<double>(failure_.criterion[static_cast<size_t>(e)]);
+    h["failure/criterion"] = c;
+  }
+  h["failure/first"] = Eigen::Vector3d(failure_.first_element, failure_.first_time,
+                                       static_cast<double>(failure_.first_criterion));
+  h["integrator/dt"] = Eigen::VectorXd::Constant(1, integrator_->timeStep());
+  History own;
+  integrator_->saveHistory(own);
+  for (auto& [key, value] : own)
+    h[kIntegrator + key] = std::move(value);
+}
+
+void Simulation::restore(const History& h) {
+  const double dt = historyEntry(h, "integrator/dt", 1)[0];
+  if (dt != integrator_->timeStep())
+    throw Error("checkpoint was written with the time step " + core::formatExact(dt) +
+                " s, this run's is " + core::formatExact(integrator_->timeStep()) +
+                " s (another case or another build of the program)");
+  const Eigen::Index n = model_.numDofs();
+  const Eigen::VectorXd& time = historyEntry(h, "state/time", 2);
+  state_.t = time[0];
+  state_.step = static_cast<long>(time[1]);
+  state_.u = historyEntry(h, "state/u", n);
+  state_.v = historyEntry(h, "state/v", n);
+  state_.a = historyEntry(h, "state/a", n);
+  const Eigen::VectorXd& w = historyEntry(h, "works", 6);
+  works_ = Works{w[0], w[1], w[2], w[3], w[4], w[5]};
+  failure_ = FailureRecord{};
+  if (h.count("failure/time")) {
+    const auto ne = model_.mesh.numElements();
+    const Eigen::VectorXd& t = historyEntry(h, "failure/time", ne);
+    const Eigen::VectorXd& c = historyEntry(h, "failure/criterion", ne);
+    failure_.time.assign(t.data(), t.data() + ne);
+    for (Eigen::Index e = 0; e < ne; ++e)
+      failure_.criterion.push_back(static_cast<FailureCriterion>(static_cast<int>(c[e])));
+  }
+  const Eigen::VectorXd& first = historyEntry(h, "failure/first", 3);
+  failure_.first_element = static_cast<int>(first[0]);
+  failure_.first_time = first[1];
+  failure_.first_criterion = static_cast<FailureCriterion>(static_cast<int>(first[2]));
+  History own;
+  const std::string prefix = kIntegrator;
+  for (auto it = h.lower_bound(prefix); it != h.end() && it->first.rfind(prefix, 0) == 0; ++it)
+    own[it->first.substr(prefix.size())] = it->second;
+  integrator_->restoreHistory(own);
+}
+
 Energy Simulation::energy() const {
   Eigen::VectorXd y;
   multiply(structure_->mass(), state_.v, y);

@@ -84,6 +84,17 @@ public:
   /// @return the model
   const Model& model() const { return model_; }
 
+  /// Saves into @p h everything the next step depends on: the State
+  /// ("state/..."), the works ("works"), the failure record ("failure/..."),
+  /// the scheme's step ("integrator/dt") and its history ("integrator/...").
+  /// The loads hold no state (they are functions of t, u and v).
+  void save(History& h) const;
+  /// Restores what save() wrote, on a simulation just built from the same
+  /// model; the next step() then continues bit for bit. Throws
+  /// lamina::Error naming a missing or mis-sized entry, or when the scheme's
+  /// step differs from the saved one (another case or another build).
+  void restore(const History& h);
+
 private:
   const Model& model_;
   std::unique_ptr<Structure> structure_;

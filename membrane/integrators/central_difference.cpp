@@ -109,6 +109,19 @@ void CentralDifference::init(State& s) {
   du_ = Eigen::VectorXd::Zero(structure_.numDofs());
 }
 
+void CentralDifference::saveHistory(History& h) const {
+  saveForces("forces/", cur_, h);
+}
+
+void CentralDifference::restoreHistory(const History& h) {
+  const Eigen::Index n = structure_.numDofs();
+  restoreForces("forces/", h, cur_);
+  historyEntry(h, "forces/internal", n);
+  historyEntry(h, "forces/external", n);
+  historyEntry(h, "forces/drag", n);
+  prev_ = cur_;
+}
+
 void CentralDifference::step(State& s) {
   // The vector work is two threaded passes around the force evaluation.
   const double t1 = static_cast<double>(s.step + 1) * dt_;

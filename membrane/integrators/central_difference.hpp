@@ -38,6 +38,10 @@ public:
   const StateForces& previousForces() const override { return prev_; }
   const Eigen::VectorXd& increment() const override { return du_; }
   std::string name() const override { return "explicit"; }
+  /// Saves the forces at t_n (the half-step velocity and the step itself
+  /// are recomputed from the State and the model).
+  void saveHistory(History& h) const override;
+  void restoreHistory(const History& h) override;
 
 private:
   void evaluate(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v, StateForces& f);

@@ -259,6 +259,27 @@ void Newmark::step(State& s) {
   reactions(s, cur_, cur_.reaction);
 }
 
+void Newmark::saveHistory(History& h) const {
+  h["a_prev"] = a_prev_;
+  h["last_iterations"] = Eigen::VectorXd::Constant(1, last_iterations_);
+  saveForces("forces/", cur_, h);
+  solver_->saveHistory("solver/", h);
+}
+
+void Newmark::restoreHistory(const History& h) {
+  const Eigen::Index n = structure_.numDofs();
+  a_prev_ = historyEntry(h, "a_prev", n);
+  last_iterations_ = static_cast<int>(historyEntry(h, "last_iterations", 1)[0]);
+  restoreForces("forces/", h, cur_);
+  historyEntry(h, "forces/external", n);
+  historyEntry(h, "forces/drag", n);
+  if (!cons_.empty())
+    historyEntry(h, "forces/reaction", static_cast<Eigen::Index>(cons_.size()));
+  solver_->restoreHistory("solver/", h);
+  prev_ = cur_; // as after init(): the next step overwrites what it reads of next_
+  next_ = cur_;
+}
+
 SolverStats Newmark::stats() const {
   return {solver_->solves(), solver_->totalIterations(), last_iterations_};
 }

@@ -52,6 +52,9 @@ public:
   std::string name() const override { return "newmark"; }
   SolverStats stats() const override;
   double setupSeconds() const override { return setup_s_; }
+  /// Saves a_{n-1} (the CG start), the forces at t_n, the solver's history.
+  void saveHistory(History& h) const override;
+  void restoreHistory(const History& h) override;
 
 private:
   void reactions(const State& s, const StateForces& f, Eigen::VectorXd& r) const;

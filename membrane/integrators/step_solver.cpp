@@ -160,6 +160,34 @@ int StepSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   return it;
 }
 
+void StepSolver::saveHistory(const std::string& prefix, History& h) const {
+  h[prefix + "counts"] =
+      Eigen::Vector3d(static_cast<double>(solves_), static_cast<double>(total_iterations_),
+                      static_cast<double>(X_.size()));
+  for (size_t i = 0; i < X_.size(); ++i) {
+    h[prefix + "X/" + std::to_string(i)] = X_[i];
+    h[prefix + "AX/" + std::to_string(i)] = AX_[i];
+  }
+}
+
+void StepSolver::restoreHistory(const std::string& prefix, const History& h) {
+  const Eigen::VectorXd& c = historyEntry(h, prefix + "counts", 3);
+  solves_ = static_cast<long>(c[0]);
+  total_iterations_ = static_cast<long>(c[1]);
+  const auto k = static_cast<size_t>(c[2]);
+  if (c[2] < 0 || static_cast<int>(k) > projection_)
+    throw Error("checkpoint entry '" + prefix + "counts' holds a projection basis of " +
+                std::to_string(k) + " vectors, the solver keeps at most " +
+                std::to_string(projection_));
+  const Eigen::Index n = static_cast<Eigen::Index>(xp_.size());
+  X_.resize(k);
+  AX_.resize(k);
+  for (size_t i = 0; i < k; ++i) {
+    X_[i] = historyEntry(h, prefix + "X/" + std::to_string(i), n);
+    AX_[i] = historyEntry(h, prefix + "AX/" + std::to_string(i), n);
+  }
+}
+
 void StepSolver::project(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   // x0 = sum (X_i . b) X_i minimizes the A-norm error over span(X); r0 = b - A x0.
   x.setZero(b.size());

@@ -19,6 +19,7 @@
 /// norm, which contains any polynomial extrapolation of them.
 
 #include "membrane/integrators/block_matrix.hpp"
+#include "membrane/integrators/time_integrator.hpp"
 #include "membrane/model/assembly.hpp"
 
 #include <Eigen/Dense>
@@ -49,6 +50,12 @@ public:
   long totalIterations() const { return total_iterations_; }
   /// @return number of solves
   long solves() const { return solves_; }
+  /// Saves the counters and the projection basis (what later solves depend
+  /// on) into @p h under keys starting with @p prefix.
+  void saveHistory(const std::string& prefix, History& h) const;
+  /// Restores what saveHistory() wrote; throws lamina::Error on a missing
+  /// or mis-sized entry.
+  void restoreHistory(const std::string& prefix, const History& h);
 
 private:
   void cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations, bool have_residual);

@@ -7,6 +7,46 @@
 
 namespace lamina::membrane {
 
+namespace {
+/// The members of StateForces with their History names.
+template <class F, class Fn>
+void forEachForce(F& f, Fn&& fn) {
+  fn("external", f.external);
+  fn("drag", f.drag);
+  fn("reaction", f.reaction);
+  fn("spring", f.spring);
+  fn("damping", f.damping);
+  fn("internal", f.internal);
+}
+} // namespace
+
+void saveForces(const std::string& prefix, const StateForces& f, History& h) {
+  forEachForce(f, [&](const char* name, const Eigen::VectorXd& v) {
+    if (v.size())
+      h[prefix + name] = v;
+  });
+}
+
+void restoreForces(const std::string& prefix, const History& h, StateForces& f) {
+  forEachForce(f, [&](const char* name, Eigen::VectorXd& v) {
+    const auto it = h.find(prefix + name);
+    if (it == h.end())
+      v.resize(0);
+    else
+      v = it->second;
+  });
+}
+
+const Eigen::VectorXd& historyEntry(const History& h, const std::string& key, Eigen::Index size) {
+  const auto it = h.find(key);
+  if (it == h.end())
+    throw Error("checkpoint has no entry '" + key + "'");
+  if (size >= 0 && it->second.size() != size)
+    throw Error("checkpoint entry '" + key + "' has " + std::to_string(it->second.size()) +
+                " values, this run needs " + std::to_string(size));
+  return it->second;
+}
+
 void throwNonFinite(const Mesh& mesh, const State& s, double t1, const Eigen::VectorXd& u1,
                     const Eigen::VectorXd& v1, const Eigen::VectorXd& a1, const std::string& hint) {
   int bad = 0;

@@ -21,11 +21,18 @@
 ///   thrown naming the time and the node.
 /// The works of the forces and the energy balance are kept outside the
 /// schemes (energy.hpp), from increment() and the forces at both ends.
+///
+/// Checkpoints: saveHistory() puts into a History everything step() reads
+/// besides the State (forces at t_n, past accelerations, solver history);
+/// restoreHistory() on a scheme freshly set up and init()-ed on the same
+/// model puts it back, after which step() continues bit for bit as the
+/// scheme that saved it would have.
 
 #include "membrane/model/mesh.hpp"
 
 #include <Eigen/Dense>
 
+#include <map>
 #include <string>
 
 namespace lamina::membrane {
@@ -56,6 +63,19 @@ struct SolverStats {
   int last_iterations = 0; ///< iterations of the last step
 };
 
+/// Named arrays of doubles: what a scheme (or a run) saves in a checkpoint
+/// besides the State. Keys are '/'-separated paths ("forces/external").
+using History = std::map<std::string, Eigen::VectorXd>;
+
+/// Saves the non-empty members of @p f under "<prefix>external", "<prefix>drag", ...
+void saveForces(const std::string& prefix, const StateForces& f, History& h);
+/// Restores what saveForces() wrote (a missing member becomes empty).
+void restoreForces(const std::string& prefix, const History& h, StateForces& f);
+/// @return entry @p key of @p h, which must exist and (when @p size >= 0)
+/// have @p size values; throws lamina::Error naming the key otherwise
+const Eigen::VectorXd& historyEntry(const History& h, const std::string& key,
+                                    Eigen::Index size = -1);
+
 /// A time-stepping scheme (see the file comment for the contract).
 class TimeIntegrator {
 public:
@@ -78,6 +98,12 @@ public:
   virtual SolverStats stats() const { return {}; }
   /// @return seconds spent setting the scheme up (matrices, factorizations)
   virtual double setupSeconds() const { return 0; }
+  /// Saves into @p h what step() depends on besides the State (keys of the
+  /// scheme's own choosing, see the file comment).
+  virtual void saveHistory(History& h) const = 0;
+  /// Restores what saveHistory() wrote; call after init(). Throws
+  /// lamina::Error naming a missing or mis-sized entry.
+  virtual void restoreHistory(const History& h) = 0;
 };
 
 /// Throws lamina::DivergenceError for a step from @p s to time @p t1 whose

@@ -515,6 +515,9 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
     model.output.field_every = static_cast<int>(o->getInt("field_every", 10));
     model.output.energy_every = static_cast<int>(o->getInt("energy_every", 1));
     model.output.fields = o->getBool("fields", true);
+    model.output.checkpoint_every = o->getInt("checkpoint_every", 0);
+    if (model.output.checkpoint_every < 0)
+      o->fail("checkpoint_every", "must be >= 0 (0: a checkpoint only on SIGINT/SIGTERM)");
     if (model.output.field_every < 0)
       o->fail("field_every", "must be >= 0");
     if (model.output.energy_every < 1)

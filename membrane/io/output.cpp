@@ -37,6 +37,20 @@ FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& st
   writeIndex();
 }
 
+FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& stem,
+                         const Mesh& mesh, bool deformed_geometry, const std::vector<double>& times,
+                         const std::vector<CellField>& cells)
+    : h5_path_(dir / (stem + ".h5")), xdmf_path_(dir / (stem + ".xdmf")), mesh_(mesh),
+      deformed_(deformed_geometry), times_(times) {
+  if (!std::filesystem::is_regular_file(h5_path_))
+    throw Error("cannot continue the field series: the file is missing",
+                {h5_path_.string(), 0, ""});
+  file_ = std::make_unique<core::H5File>(h5_path_, core::H5File::Mode::ReadWrite);
+  for (const auto& c : cells)
+    cells_.emplace_back(c.name, c.components);
+  writeIndex();
+}
+
 void FieldWriter::write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                         const std::vector<CellField>& cells) {
   const auto n = static_cast<std::uint64_t>(mesh_.numNodes());
@@ -117,16 +131,49 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& heade
   if (!out_)
     throw Error("cannot write", ErrorContext{path.string() + ".part", 0, ""});
   out_ << header << '\n';
+  bytes_ = header.size() + 1;
+}
+
+CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& header,
+                     std::uintmax_t bytes)
+    : path_(path), bytes_(bytes) {
+  const std::filesystem::path part = path.string() + ".part";
+  if (!std::filesystem::exists(part)) {
+    if (!std::filesystem::exists(path))
+      throw Error("cannot continue the table: neither it nor its .part file exists",
+                  ErrorContext{path.string(), 0, ""});
+    core::renameIntoPlace(path, part);
+  }
+  const ErrorContext where{part.string(), 0, ""};
+  std::string first;
+  {
+    std::ifstream in(part);
+    std::getline(in, first);
+  }
+  if (first != header)
+    throw Error("cannot continue the table: its header is not this run's", where);
+  const std::uintmax_t size = std::filesystem::file_size(part);
+  if (size < bytes)
+    throw Error("cannot continue the table: it holds " + std::to_string(size) +
+                    " bytes, the checkpoint expects " + std::to_string(bytes),
+                where);
+  std::filesystem::resize_file(part, bytes);
+  out_.open(part, std::ios::app);
+  if (!out_)
+    throw Error("cannot write", where);
 }
 
 void CsvWriter::row(const std::vector<double>& values) {
+  std::string line;
   for (size_t k = 0; k < values.size(); ++k) {
     if (k)
-      out_ << ',';
-    out_ << core::formatExact(values[k]);
+      line += ',';
+    line += core::formatExact(values[k]);
   }
-  out_ << '\n';
+  line += '\n';
+  out_ << line;
   out_.flush();
+  bytes_ += line.size();
 }
 
 void CsvWriter::close() {

@@ -15,6 +15,7 @@
 
 #include <Eigen/Dense>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -37,8 +38,18 @@ public:
   /// fields @p cells, flushes, rewrites the index.
   void write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
              const std::vector<CellField>& cells);
+  /// Reopens the series DIR/<stem>.h5 of an earlier run for appending
+  /// after its first @p times.size() steps (later ones are overwritten by
+  /// the next writes and left out of the index), with the element-field
+  /// layout @p cells of its steps; rewrites the index. Throws lamina::Error
+  /// naming the file when it is missing or unreadable.
+  FieldWriter(const std::filesystem::path& dir, const std::string& stem, const Mesh& mesh,
+              bool deformed_geometry, const std::vector<double>& times,
+              const std::vector<CellField>& cells);
   /// @return number of steps written
   int count() const { return static_cast<int>(times_.size()); }
+  /// @return the times of the steps written (s)
+  const std::vector<double>& times() const { return times_; }
 
 private:
   void writeIndex() const;
@@ -55,14 +66,22 @@ class CsvWriter {
 public:
   /// Opens "<path>.part" and writes @p header (without newline).
   CsvWriter(const std::filesystem::path& path, const std::string& header);
+  /// Continues the table of an earlier run: takes "<path>.part" (or <path>,
+  /// moved back to "<path>.part"), checks that it starts with @p header and
+  /// holds at least @p bytes, cuts it to @p bytes (rows written after the
+  /// checkpoint go) and appends. Throws lamina::Error naming the file.
+  CsvWriter(const std::filesystem::path& path, const std::string& header, std::uintmax_t bytes);
   /// Writes one row of numbers (17 significant digits) and flushes.
   void row(const std::vector<double>& values);
   /// Renames the file into place.
   void close();
+  /// @return bytes written so far, header included
+  std::uintmax_t bytes() const { return bytes_; }
 
 private:
   std::filesystem::path path_;
   std::ofstream out_;
+  std::uintmax_t bytes_ = 0;
   bool closed_ = false;
 };
 

@@ -73,9 +73,10 @@ struct TimeSettings {
 
 /// Output settings.
 struct OutputSettings {
-  int field_every = 10; ///< write fields every this many steps (0 = first and last only)
-  int energy_every = 1; ///< compute kinetic/strain energy every this many steps
-  bool fields = true;   ///< write the XDMF/HDF5 series at all
+  int field_every = 10;      ///< write fields every this many steps (0 = first and last only)
+  int energy_every = 1;      ///< compute kinetic/strain energy every this many steps
+  bool fields = true;        ///< write the XDMF/HDF5 series at all
+  long checkpoint_every = 0; ///< write checkpoint.h5 every this many steps (0: only on interrupt)
 };
 
 /// Everything a run needs.

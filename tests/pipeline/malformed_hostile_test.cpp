@@ -12,10 +12,6 @@
 
 #include <algorithm>
 #include <csignal>
-#include <fcntl.h>
-#include <spawn.h>
-
-extern char** environ;
 
 using namespace lamina::test;
 
@@ -41,22 +37,6 @@ std::string repeat(const std::string& s, int n) {
   for (int i = 0; i < n; ++i)
     out += s;
   return out;
-}
-
-/// Starts @p argv[0] with @p argv; @return its pid.
-pid_t spawn(const std::vector<std::string>& argv) {
-  std::vector<char*> args;
-  for (const auto& a : argv)
-    args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = -1;
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  const int rc = ::posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return rc == 0 ? pid : -1;
 }
 
 } // namespace

@@ -1,0 +1,159 @@
+#include "membrane/io/checkpoint.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/hdf5_file.hpp"
+
+#include <cstdint>
+#include <cstdio>
+#include <fcntl.h>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <unistd.h>
+
+namespace lamina::membrane {
+
+namespace {
+
+constexpr const char* kFormat = "lamina membrane checkpoint 1";
+
+/// FNV-1a, 64 bits: a checksum against corruption, not a cryptographic hash.
+class Fnv1a {
+public:
+  void add(const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) {
+      h_ ^= p[i];
+      h_ *= 0x100000001b3ULL;
+    }
+  }
+  void add(const std::string& s) { add(s.data(), s.size() + 1); } // with the terminator
+  std::string hex() const {
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
+    return buf;
+  }
+
+private:
+  std::uint64_t h_ = 0xcbf29ce484222325ULL;
+};
+
+std::string checksum(const History& data) {
+  Fnv1a f;
+  for (const auto& [key, v] : data) {
+    f.add(key);
+    const auto n = static_cast<std::uint64_t>(v.size());
+    f.add(&n, sizeof n);
+    f.add(v.data(), sizeof(double) * static_cast<std::size_t>(v.size()));
+  }
+  return f.hex();
+}
+
+void fsyncFile(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  const bool ok = fd >= 0 && ::fsync(fd) == 0;
+  if (fd >= 0)
+    ::close(fd);
+  if (!ok)
+    throw Error("cannot sync the checkpoint to disk", {path.string(), 0, ""});
+}
+
+} // namespace
+
+std::filesystem::path checkpointPath(const std::filesystem::path& dir) {
+  return dir / "checkpoint.h5";
+}
+
+void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& checkpoint) {
+  const std::filesystem::path tmp =
+      path.parent_path() / (core::temporaryPrefix(path) + std::to_string(::getpid()));
+  try {
+    {
+      core::H5File f(tmp, core::H5File::Mode::Create);
+      std::string keys;
+      std::vector<double> sizes;
+      f.createGroup("/data");
+      for (const auto& [key, v] : checkpoint.data) {
+        keys += key + "\n";
+        sizes.push_back(static_cast<double>(v.size()));
+        if (v.size())
+          f.writeDoubles("/data/" + key, v.data(), {static_cast<std::uint64_t>(v.size())});
+      }
+      f.writeDoubles("/sizes", sizes.data(), {static_cast<std::uint64_t>(sizes.size())});
+      f.writeAttribute("/", "format", kFormat);
+      f.writeAttribute("/", "case", checkpoint.case_name);
+      f.writeAttribute("/", "case_digest", checkpoint.case_digest);
+      f.writeAttribute("/", "keys", keys);
+      f.writeAttribute("/", "checksum", checksum(checkpoint.data));
+      f.flush();
+    } // closed
+    fsyncFile(tmp);
+    core::renameIntoPlace(tmp, path);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
+}
+
+Checkpoint readCheckpoint(const std::filesystem::path& path) {
+  const ErrorContext where{path.string(), 0, ""};
+  if (!std::filesystem::is_regular_file(path))
+    throw Error("no checkpoint here (a run writes one with output.checkpoint_every or when "
+                "interrupted)",
+                where);
+  Checkpoint c;
+  std::string stored_sum;
+  try {
+    const core::H5File f(path, core::H5File::Mode::ReadOnly);
+    if (f.readStringAttribute("/", "format") != kFormat)
+      throw Error("not a membrane checkpoint (format '" + f.readStringAttribute("/", "format") +
+                      "')",
+                  where);
+    c.case_name = f.readStringAttribute("/", "case");
+    c.case_digest = f.readStringAttribute("/", "case_digest");
+    stored_sum = f.readStringAttribute("/", "checksum");
+    std::istringstream keys(f.readStringAttribute("/", "keys"));
+    std::vector<std::uint64_t> dims;
+    const std::vector<double> sizes = f.readDoubles("/sizes", dims);
+    std::string key;
+    for (std::size_t k = 0; std::getline(keys, key); ++k) {
+      if (k >= sizes.size())
+        throw Error("more entries than sizes", where);
+      Eigen::VectorXd v;
+      if (sizes[k] > 0) {
+        const std::vector<double> x = f.readDoubles("/data/" + key, dims);
+        if (static_cast<double>(x.size()) != sizes[k])
+          throw Error("entry '" + key + "' has " + std::to_string(x.size()) + " values, " +
+                          std::to_string(static_cast<long>(sizes[k])) + " expected",
+                      where);
+        v = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
+      }
+      c.data.emplace(key, std::move(v));
+    }
+  } catch (const Error& e) {
+    throw Error("checkpoint is unreadable (truncated, corrupt or not a checkpoint): " +
+                    std::string(e.what()),
+                where);
+  }
+  if (checksum(c.data) != stored_sum)
+    throw Error("checkpoint is corrupt: its checksum does not match its content", where);
+  return c;
+}
+
+std::string caseDigest(const std::filesystem::path& case_file,
+                       const std::vector<std::string>& overrides) {
+  std::ifstream in(case_file, std::ios::binary);
+  if (!in)
+    throw Error("cannot read the case file", {case_file.string(), 0, ""});
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Fnv1a f;
+  f.add(text);
+  for (const auto& o : overrides)
+    if (o.rfind("output.checkpoint_every", 0) != 0)
+      f.add(o);
+  return f.hex();
+}
+
+} // namespace lamina::membrane

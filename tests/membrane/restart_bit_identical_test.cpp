@@ -1,0 +1,204 @@
+// Checkpoint and restart (issue 14): a run of n steps stopped at step k and
+// continued from its checkpoint writes the same outputs as the run that was
+// never stopped, bit for bit: every value of probes.csv, energy.csv,
+// reactions.csv, summary.json (timings aside) and of the field series is
+// compared as the bytes of the double (memcmp), not to a tolerance. The
+// reference is the uninterrupted run itself: the claim is identity, so no
+// other number can stand in for it.
+#include "restart_helpers.hpp"
+
+#include "membrane/io/checkpoint.hpp"
+#include "membrane/run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <sys/wait.h>
+
+using namespace lamina::membrane;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// The linear model on the paper's Newmark scheme with everything that
+/// carries history between steps: HHT-alpha (forces at t_n), implicit drag,
+/// CG started from the projection on past solutions, a pressure pulse,
+/// constraints (reactions), fields every 3 and energies every 2 steps.
+const char* kLinear = R"(
+[mesh]
+Lx = 1.0
+nx = 8
+[[section]]
+E = 1.0e9
+nu = 0.3
+density = 1000.0
+thickness = 1.0e-3
+[time]
+dt = 1.0e-4
+t_end = 4.0e-3
+hht_alpha = -0.05
+[solver]
+type = "cg"
+tolerance = 1.0e-12
+projection = 3
+[[fixed]]
+nodes = "edges"
+[[load]]
+type = "pressure"
+value = 1.0e3
+profile = "pulse"
+duration = 1.0e-3
+[[drag]]
+cd = 1.5
+velocity = "resultant"
+[[probe]]
+name = "centre"
+at = [0.5, 0.5]
+[output]
+field_every = 3
+energy_every = 2
+)";
+
+/// The large-deflection fabric on explicit central differences: tension
+/// only (wrinkling), a failure threshold crossed by elements before and
+/// after the stop, a blast (arrival time, follower pressure), drag and
+/// mass-proportional damping; 64 steps.
+const char* kLargeDeflection = R"(
+model = "large_deflection"
+[mesh]
+type = "rectangle"
+Lx = 1.0
+nx = 8
+[[section]]
+E = 580.0e6
+nu = 0.3
+density = 1280.0
+thickness = 0.53e-3
+tension_only = true
+failure_strain = 2.0e-3
+[time]
+integrator = "explicit"
+safety = 0.5
+damping = 5.0
+t_end = 4.0e-3
+[[fixed]]
+nodes = "edges"
+[[blast]]
+charge = 0.05
+position = [0.5, 0.5, -1.5]
+burst = "hemispherical"
+[[drag]]
+cd = 1.5
+velocity = "resultant"
+[[probe]]
+name = "centre"
+at = [0.5, 0.5]
+[output]
+field_every = 7
+energy_every = 3
+)";
+
+/// Runs @p model uninterrupted into DIR/full; @return its options.
+RunOptions runFull(const Model& model, const fs::path& dir, long& steps) {
+  RunOptions full;
+  full.out_dir = dir / "full";
+  full.quiet = true;
+  steps = runModel(model, full)["steps"].get<long>();
+  return full;
+}
+
+/// Runs @p model uninterrupted into "full", and stopped at @p stop then
+/// restarted into "split"; expects the same outputs bit for bit.
+void expectRestartIdentical(const std::string& text, long stop, const std::string& name) {
+  const Model model = test::modelFromText(text, name + ".toml");
+  const test::Folder dir(name);
+  long steps = 0;
+  const RunOptions full = runFull(model, dir.path, steps);
+  ASSERT_GT(steps, stop) << "the stop must fall inside the run";
+
+  RunOptions split = full;
+  split.out_dir = dir.path / "split";
+  split.stop_at_step = stop;
+  const auto first = runModel(model, split);
+  ASSERT_EQ(first["steps"].get<long>(), stop);
+  ASSERT_TRUE(fs::exists(checkpointPath(split.out_dir)));
+  split.stop_at_step = 0;
+  split.restart = true;
+  runModel(model, split);
+  test::expectSameOutputs(full.out_dir, split.out_dir, model.name);
+}
+
+} // namespace
+
+TEST(Restart, LinearNewmarkContinuesBitIdentically) {
+  expectRestartIdentical(kLinear, 23, "restart-linear");
+}
+
+TEST(Restart, LargeDeflectionExplicitContinuesBitIdentically) {
+  // Elements fail from step 43 on: the stop at 47 splits the failure history.
+  expectRestartIdentical(kLargeDeflection, 47, "restart-large");
+}
+
+// kill -9 after a periodic checkpoint: the tables already hold rows written
+// after it (and are still ".part" files). The restart cuts them back to the
+// checkpoint's step and ends identical to the uninterrupted run.
+TEST(Restart, RowsWrittenAfterTheLastCheckpointAreCutBack) {
+  const Model model = test::modelFromText(kLinear, "restart-crash.toml");
+  const test::Folder dir("restart-crash");
+  long steps = 0;
+  const RunOptions full = runFull(model, dir.path, steps);
+  ASSERT_GT(steps, 27);
+
+  Model periodic = model;
+  periodic.output.checkpoint_every = 10;
+  RunOptions split = full;
+  split.out_dir = dir.path / "split";
+  split.stop_at_step = 20; // checkpoints at 10 and 20
+  runModel(periodic, split);
+  const fs::path ck = checkpointPath(split.out_dir);
+  fs::copy_file(ck, dir.path / "at20.h5");
+  split.restart = true;
+  split.stop_at_step = 27; // rows and field steps 21..27 written...
+  runModel(periodic, split);
+  fs::copy_file(dir.path / "at20.h5", ck, fs::copy_options::overwrite_existing);
+  for (const char* f : {"probes.csv", "energy.csv", "reactions.csv"}) // ...and died before closing
+    fs::rename(split.out_dir / f, split.out_dir / (std::string(f) + ".part"));
+  split.stop_at_step = 0;
+  runModel(periodic, split);
+  test::expectSameOutputs(full.out_dir, split.out_dir, model.name);
+  for (const auto& f : fs::directory_iterator(split.out_dir))
+    EXPECT_NE(f.path().extension(), ".part") << f.path();
+}
+
+// The program stopped by SIGTERM mid-run (exit 143, checkpoint written on the
+// way out), then `membrane run CASE --restart DIR`: the outputs equal those
+// of the uninterrupted program run.
+TEST(Restart, RunInterruptedBySigtermContinuesBitIdentically) {
+  const test::Folder dir("restart-signal");
+  auto args = [&](const fs::path& out, const std::string& flag) {
+    return std::vector<std::string>{"run",   test::sourcePath("cases/membrane/case3.toml").string(),
+                                    flag,    out.string(),
+                                    "--set", "time.t_end=0.01",
+                                    "--set", "output.field_every=40"};
+  };
+  const fs::path full = dir.path / "full", split = dir.path / "split";
+  auto r = lamina::test::run(test::membraneCommand(args(full, "--out")));
+  ASSERT_EQ(r.code, 0) << r.output;
+
+  auto argv = args(split, "--out");
+  argv.insert(argv.begin(), (lamina::test::kBin / "membrane").string());
+  const pid_t pid = lamina::test::spawn(argv);
+  ASSERT_GT(pid, 0);
+  for (int i = 0; i < 6000 && !fs::exists(split / "probes.csv.part"); ++i)
+    ::usleep(5000); // stepping has started (generous on a loaded machine)
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by the signal instead of stopping";
+  ASSERT_EQ(WEXITSTATUS(status), 143) << "the run ended before the signal: make it longer";
+  ASSERT_TRUE(fs::exists(checkpointPath(split)));
+
+  r = lamina::test::run(test::membraneCommand(args(split, "--restart")));
+  ASSERT_EQ(r.code, 0) << r.output;
+  test::expectSameOutputs(full, split, "case3");
+}
