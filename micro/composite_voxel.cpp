@@ -26,7 +26,91 @@ Eigen::Matrix<double, 6, 3> strainOfJump(const Eigen::Vector3d& n) {
   return B;
 }
 
+/// Fraction of the layer @p inc (its periodic slabs) inside the voxel of
+/// centre @p p and edges @p h: exact, the sum over the nearby slabs of the
+/// box fractions between its two planes.
+double layerFraction(const Inclusion& inc, const Eigen::Vector3d& p, const Eigen::Vector3d& h,
+                     const Eigen::Vector3d& L) {
+  const Eigen::Vector3d nu = inc.unitDirection(L);
+  const double D = inc.periodicSpacing(L); // plane spacing
+  const Eigen::Vector3d G = nu / D;
+  double s = G.dot(nearestImage(p - inc.center, L));
+  const double z0 = (s - std::round(s)) * D; // centre's distance from the nearest mid-plane
+  const double w = 0.5 * nu.cwiseAbs().dot(h);
+  const int K = static_cast<int>(std::ceil((w + 0.5 * inc.thickness) / D)) + 1;
+  double f = 0;
+  for (int k = -K; k <= K; ++k)
+    f += boxFractionBelowPlane(h, nu, k * D + 0.5 * inc.thickness - z0) -
+         boxFractionBelowPlane(h, nu, k * D - 0.5 * inc.thickness - z0);
+  return std::clamp(f, 0.0, 1.0);
+}
+
+/// Fraction of the curved inclusion @p inc in the voxel of lower corner
+/// @p corner and edges @p h, counted on kSubSamples^3 points; -1 when its 8
+/// corners lie on one side (not cut).
+double sampledFraction(const Inclusion& inc, const Eigen::Vector3d& corner,
+                       const Eigen::Vector3d& h, const Eigen::Vector3d& L) {
+  int in = 0;
+  for (int c = 0; c < 8; ++c)
+    in += inc.contains(
+        corner + Eigen::Vector3d((c & 1) * h[0], ((c >> 1) & 1) * h[1], ((c >> 2) & 1) * h[2]), L);
+  if (in == 0 || in == 8)
+    return -1;
+  int count = 0;
+  for (int a = 0; a < kSubSamples; ++a)
+    for (int b = 0; b < kSubSamples; ++b)
+      for (int c = 0; c < kSubSamples; ++c)
+        count += inc.contains(corner + Eigen::Vector3d((a + 0.5) / kSubSamples * h[0],
+                                                       (b + 0.5) / kSubSamples * h[1],
+                                                       (c + 0.5) / kSubSamples * h[2]),
+                              L);
+  return static_cast<double>(count) / (kSubSamples * kSubSamples * kSubSamples);
+}
+
 } // namespace
+
+double boxFractionBelowPlane(const Eigen::Vector3d& h, const Eigen::Vector3d& nu, double a) {
+  // box [0, h]: nu.y <= a + nu.h/2; a negative component flips its axis
+  double alpha = a + 0.5 * nu.dot(h);
+  double m[3], l[3];
+  int d = 0;
+  const double scale = nu.cwiseAbs().dot(h);
+  for (int i = 0; i < 3; ++i) {
+    if (nu[i] < 0)
+      alpha -= nu[i] * h[i];
+    if (std::abs(nu[i]) * h[i] <= 1e-9 * scale)
+      continue; // the plane is parallel to this axis: it does not enter
+    m[d] = std::abs(nu[i]);
+    l[d] = h[i];
+    ++d;
+  }
+  double reach = 0; // alpha at which the plane has swept the whole box
+  for (int i = 0; i < d; ++i)
+    reach += m[i] * l[i];
+  if (alpha <= 0)
+    return 0.0;
+  if (alpha >= reach)
+    return 1.0;
+  // inclusion-exclusion over the box corners:
+  // V = sum_S (-1)^|S| (alpha - sum_{i in S} m_i l_i)_+^d / (d! prod m_i)
+  double sum = 0, prod = 1, fact = 1;
+  for (int i = 0; i < d; ++i) {
+    prod *= m[i] * l[i];
+    fact *= i + 1;
+  }
+  for (int S = 0; S < (1 << d); ++S) {
+    double r = alpha;
+    int sign = 1;
+    for (int i = 0; i < d; ++i)
+      if (S & (1 << i)) {
+        r -= m[i] * l[i];
+        sign = -sign;
+      }
+    if (r > 0)
+      sum += sign * std::pow(r, d);
+  }
+  return std::clamp(sum / (fact * prod), 0.0, 1.0);
+}
 
 materials::Stiffness laminateStiffness(const materials::Stiffness& C1,
                                        const materials::Stiffness& C2, double c1,
@@ -63,28 +147,23 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
         for (int j = lo[1]; j <= hi[1]; ++j)
           for (int k = lo[2]; k <= hi[2]; ++k) {
             const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
-            int in = 0;
-            for (int c = 0; c < 8; ++c)
-              in += inc.contains(corner + Eigen::Vector3d((c & 1) * h[0], ((c >> 1) & 1) * h[1],
-                                                          ((c >> 2) & 1) * h[2]),
-                                 size);
-            if (in == 0 || in == 8)
-              continue;
-            int count = 0;
-            for (int a = 0; a < kSubSamples; ++a)
-              for (int b = 0; b < kSubSamples; ++b)
-                for (int c = 0; c < kSubSamples; ++c)
-                  count += inc.contains(corner + Eigen::Vector3d((a + 0.5) / kSubSamples * h[0],
-                                                                 (b + 0.5) / kSubSamples * h[1],
-                                                                 (c + 0.5) / kSubSamples * h[2]),
-                                        size);
+            double f = 0;
+            if (inc.shape == Shape::Layer) {
+              f = layerFraction(inc, corner + 0.5 * h, h, size);
+              const bool centre = inc.contains(corner + 0.5 * h, size);
+              if ((f == 0 && !centre) || (f == 1 && centre))
+                continue; // whole voxel on the side its centre sampled
+            } else {
+              f = sampledFraction(inc, corner, h, size);
+              if (f < 0)
+                continue;
+            }
             const std::size_t idx =
                 (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
                  static_cast<std::size_t>(wrap(j, n[1]))) *
                     static_cast<std::size_t>(n[2]) +
                 static_cast<std::size_t>(wrap(k, n[2]));
-            mine.emplace_back(idx, static_cast<double>(count) /
-                                       (kSubSamples * kSubSamples * kSubSamples));
+            mine.emplace_back(idx, f);
           }
 #pragma omp critical
       found.insert(found.end(), mine.begin(), mine.end());

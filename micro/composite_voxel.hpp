@@ -11,11 +11,15 @@
 /// K_i = B^T C_i B, dC = C_1 - C_2, and fractions c_1 + c_2 = 1,
 ///   C = c_1 C_1 + c_2 C_2 - c_1 c_2 dC B (c_2 K_1 + c_1 K_2)^-1 B^T dC.
 ///
-/// Detection: a voxel is cut by an inclusion when its 8 corners are not all
-/// inside or all outside it; its fraction is then counted on s^3 sub-voxel
-/// points (s = kSubSamples) and its normal is the gradient direction of the
-/// inclusion's surface at the voxel centre. A voxel cut by two inclusions
-/// keeps the phase of its centre (as without composite voxels).
+/// Detection and fraction: a voxel is cut by a curved inclusion (sphere,
+/// ellipsoid, fibre) when its 8 corners are not all inside or all outside
+/// it; its fraction is then counted on s^3 sub-voxel points (s =
+/// kSubSamples). A layer's interfaces are planes: its fraction in every
+/// voxel is exact (boxFractionBelowPlane over its nearby slabs), so thin
+/// layers and planes along sub-sample rows are counted right. The normal is
+/// the gradient direction of the inclusion's surface at the voxel centre. A
+/// voxel cut by two inclusions keeps the phase of its centre (as without
+/// composite voxels).
 
 #include "materials/stiffness.hpp"
 #include "micro/unit_cell.hpp"
@@ -35,6 +39,12 @@ inline constexpr int kSubSamples = 10;
 materials::Stiffness laminateStiffness(const materials::Stiffness& C1,
                                        const materials::Stiffness& C2, double c1,
                                        const Eigen::Vector3d& n);
+
+/// @return the fraction of the box of edges @p h centred at the origin that
+/// lies on the side nu . x <= @p a of the plane with unit normal @p nu (exact:
+/// inclusion-exclusion over the box corners; components of nu below 1e-9 of
+/// the box's extent along nu are taken as zero)
+double boxFractionBelowPlane(const Eigen::Vector3d& h, const Eigen::Vector3d& nu, double a);
 
 /// @return the voxels of the grid (@p n voxels, cell @p size) cut by the
 /// interfaces of @p inclusions, with fraction and normal; @p phase is the
