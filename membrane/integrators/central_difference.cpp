@@ -5,11 +5,6 @@
 
 namespace lamina::membrane {
 
-namespace {
-/// Below this many DOFs the vector loops of a step stay on one thread.
-constexpr int kParallelDofs = 30000;
-} // namespace
-
 CentralDifference::CentralDifference(const Model& model, const Structure& structure,
                                      const LoadSet& loads, const ConstrainedDofs& cons, double dt,
                                      double damping)
@@ -172,11 +167,7 @@ void CentralDifference::step(State& s) {
     throwNonFinite(model_.mesh, s, t1, u1_, v1_, a1_,
                    "; the explicit step may exceed the stable step");
   reactions(a1_, next);
-  std::swap(s.u, u1_);
-  std::swap(s.v, v1_);
-  std::swap(s.a, a1_);
-  s.t = t1;
-  ++s.step;
+  commitStep(s, t1, u1_, v1_, a1_);
   std::swap(prev_, cur_);
 }
 

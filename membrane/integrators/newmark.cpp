@@ -9,8 +9,6 @@
 namespace lamina::membrane {
 
 namespace {
-/// Below this many DOFs the vector loops of a step stay on one thread.
-constexpr int kParallelDofs = 30000;
 
 /// Rows @p rows of @p A as an |rows| x cols matrix.
 SparseMatrix extractRows(const SparseMatrix& A, const std::vector<int>& rows) {
@@ -247,13 +245,9 @@ void Newmark::step(State& s) {
   if (non_finite > 0)
     throwNonFinite(model_.mesh, s, t1, u1_, v1_, a1_);
 
-  // Commit (a_{n-1} <- a_n, a_n <- a_{n+1} by swaps).
-  std::swap(s.u, u1_);
-  std::swap(s.v, v1_);
-  std::swap(a_prev_, s.a);
-  std::swap(s.a, a1_);
-  s.t = t1;
-  ++s.step;
+  // Commit (a_n <- a_{n+1}, then a_{n-1} <- a_n by swaps).
+  commitStep(s, t1, u1_, v1_, a1_);
+  std::swap(a_prev_, a1_);
   std::swap(prev_, cur_);
   std::swap(cur_, next_);
   reactions(s, cur_, cur_.reaction);

@@ -47,6 +47,15 @@ const Eigen::VectorXd& historyEntry(const History& h, const std::string& key, Ei
   return it->second;
 }
 
+void commitStep(State& s, double t1, Eigen::VectorXd& u1, Eigen::VectorXd& v1,
+                Eigen::VectorXd& a1) {
+  std::swap(s.u, u1);
+  std::swap(s.v, v1);
+  std::swap(s.a, a1);
+  s.t = t1;
+  ++s.step;
+}
+
 void throwNonFinite(const Mesh& mesh, const State& s, double t1, const Eigen::VectorXd& u1,
                     const Eigen::VectorXd& v1, const Eigen::VectorXd& a1, const std::string& hint) {
   int bad = 0;

@@ -106,6 +106,13 @@ public:
   virtual void restoreHistory(const History& h) = 0;
 };
 
+/// Below this many DOFs the vector loops of a step stay on one thread.
+inline constexpr int kParallelDofs = 30000;
+
+/// Commits a finite step of both schemes: @p s takes @p u1, @p v1, @p a1
+/// by swaps (on return they hold u_n, v_n, a_n), s.t = @p t1 and s.step + 1.
+void commitStep(State& s, double t1, Eigen::VectorXd& u1, Eigen::VectorXd& v1, Eigen::VectorXd& a1);
+
 /// Throws lamina::DivergenceError for a step from @p s to time @p t1 whose
 /// result @p u1, @p v1, @p a1 is not finite, naming the time, the step and
 /// the first node with a non-finite value; @p hint is appended when not empty.
