@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <complex>
 #include <cstring>
 
 namespace lamina::homogenize {
@@ -24,36 +25,61 @@ Eigen::Matrix3d unitStrain(int k) {
 }
 
 /// One Fourier mode of the r2c half spectrum: the real vector q of the
-/// rotated gradient, its phase theta = (xi_1 + xi_2 + xi_3)/2, the
-/// consistent-mass weight of the trilinear interpolant and the Parseval
-/// weight of the half spectrum.
+/// rotated gradient, the phase factor e^{-i theta} with theta = (xi_1 + xi_2
+/// + xi_3)/2, the consistent-mass weight of the trilinear interpolant and
+/// the Parseval weight of the half spectrum.
 struct Mode {
   std::size_t index;
   Eigen::Vector3d q;
-  double theta, mass, weight;
+  std::complex<double> shift; // e^{-i theta}
+  double mass, weight;
 };
 
-/// Calls f(Mode) for every mode of @p grid.
-template <class F>
-void forEachMode(const Grid& grid, F&& f) {
-  const int n0 = grid.n[0], n1 = grid.n[1], n2 = grid.n[2], m2 = n2 / 2 + 1;
-  auto xi = [](int k, int n) { return 2 * M_PI * k / n; };
-  for (int i = 0; i < n0; ++i)
-    for (int j = 0; j < n1; ++j)
-      for (int k = 0; k < m2; ++k) {
-        const double x0 = xi(i, n0), x1 = xi(j, n1), x2 = xi(k, n2);
-        const double s0 = std::sin(x0 / 2), c0 = std::cos(x0 / 2);
-        const double s1 = std::sin(x1 / 2), c1 = std::cos(x1 / 2);
-        const double s2 = std::sin(x2 / 2), c2 = std::cos(x2 / 2);
-        Mode m;
-        m.index = (static_cast<std::size_t>(i) * n1 + j) * m2 + k;
-        m.q = {2 * s0 * c1 * c2 / grid.h[0], 2 * c0 * s1 * c2 / grid.h[1],
-               2 * c0 * c1 * s2 / grid.h[2]};
-        m.theta = (x0 + x1 + x2) / 2;
-        m.mass = (2 + std::cos(x0)) * (2 + std::cos(x1)) * (2 + std::cos(x2)) / 27;
-        m.weight = (k == 0 || 2 * k == n2) ? 1.0 : 2.0;
-        f(m);
-      }
+/// Calls f(Mode, acc) for every mode of @p grid on the OpenMP threads, each
+/// with its own K accumulators acc[0..K-1]; returns their sums. The factors
+/// of each axis (sin and cos of xi/2, e^{-i xi/2}, (2 + cos xi)/3) are
+/// tabulated once: a mode costs products, no trigonometry.
+template <int K, class F>
+std::array<double, K> sumOverModes(const Grid& grid, F&& f) {
+  const int n[3] = {grid.n[0], grid.n[1], grid.n[2]};
+  const int m2 = n[2] / 2 + 1;
+  std::vector<double> sn[3], cs[3], mass[3];
+  std::vector<std::complex<double>> shift[3];
+  for (int d = 0; d < 3; ++d) {
+    const int m = d == 2 ? m2 : n[d];
+    for (int k = 0; k < m; ++k) {
+      const double xi = 2 * M_PI * k / n[d];
+      sn[d].push_back(std::sin(xi / 2));
+      cs[d].push_back(std::cos(xi / 2));
+      mass[d].push_back((2 + std::cos(xi)) / 3);
+      shift[d].push_back(std::polar(1.0, -xi / 2));
+    }
+  }
+  std::array<double, K> total{};
+#pragma omp parallel
+  {
+    double acc[K] = {};
+#pragma omp for schedule(static)
+    for (int i = 0; i < n[0]; ++i)
+      for (int j = 0; j < n[1]; ++j)
+        for (int k = 0; k < m2; ++k) {
+          const auto I = static_cast<std::size_t>(i), J = static_cast<std::size_t>(j),
+                     Kz = static_cast<std::size_t>(k);
+          Mode m;
+          m.index = (I * static_cast<std::size_t>(n[1]) + J) * static_cast<std::size_t>(m2) + Kz;
+          m.q = {2 * sn[0][I] * cs[1][J] * cs[2][Kz] / grid.h[0],
+                 2 * cs[0][I] * sn[1][J] * cs[2][Kz] / grid.h[1],
+                 2 * cs[0][I] * cs[1][J] * sn[2][Kz] / grid.h[2]};
+          m.shift = shift[0][I] * shift[1][J] * shift[2][Kz];
+          m.mass = mass[0][I] * mass[1][J] * mass[2][Kz];
+          m.weight = (k == 0 || 2 * k == n[2]) ? 1.0 : 2.0;
+          f(m, acc);
+        }
+#pragma omp critical(lamina_dispersion_modes)
+    for (int a = 0; a < K; ++a)
+      total[static_cast<std::size_t>(a)] += acc[a];
+  }
+  return total;
 }
 
 /// |q|^2 below this is a zero of q (cos(pi/2) is 6e-17, not 0), as in the
@@ -108,54 +134,59 @@ void DispersionAccumulator::addLoadCase(int k, const double* u) {
   fft.forward(u);
   const double* w = fft.spectrum<double>();
   const std::size_t chunk = fft.chunkSize(); // complex entries between components
-  std::vector<Complex>& h = h_hat_[static_cast<std::size_t>(k)];
+  const std::size_t kk = static_cast<std::size_t>(k);
+  std::vector<Complex>& h = h_hat_[kk];
   h.assign(3 * Nc, Complex(0, 0));
   const Eigen::Matrix3d T = unitStrain(k);
   const double zero2 = zeroOfQ(grid_);
-  double e2 = 0, r2 = 0, H2 = 0;
-  forEachMode(grid_, [&](const Mode& m) {
+  // sums: |e|^2, |residual|^2, |H|^2 (mass-weighted)
+  const auto sums = sumOverModes<3>(grid_, [&](const Mode& m, double* acc) {
     const Complex s = s_hat_[m.index];
     const double qq = m.q.squaredNorm();
     // e_hat = s T; |e_hat|^2 (Frobenius) per mode
     const double es = std::norm(s) * T.squaredNorm();
-    e2 += m.weight * es;
+    acc[0] += m.weight * es;
     if (qq <= zero2) { // no periodic h reaches these modes: all residual
-      r2 += m.weight * es;
+      acc[1] += m.weight * es;
       return;
     }
     // least squares: g = s v with v = A(q)^-1 T q, h_hat = g / (i e^{i theta})
     const Eigen::Vector3d Tq = T * m.q;
     const Eigen::Vector3d v = (2 / qq) * (Tq - m.q * (m.q.dot(Tq) / (2 * qq)));
     const Eigen::Matrix3d symqv = 0.5 * (m.q * v.transpose() + v * m.q.transpose());
-    r2 += m.weight * std::norm(s) * (T - symqv).squaredNorm();
-    const Complex to_h = Complex(0, -1) * std::polar(1.0, -m.theta); // 1 / (i e^{i theta})
+    acc[1] += m.weight * std::norm(s) * (T - symqv).squaredNorm();
+    const Complex to_h = Complex(0, -1) * m.shift; // 1 / (i e^{i theta})
     for (int c = 0; c < 3; ++c) {
       const std::size_t at = static_cast<std::size_t>(c) * Nc + m.index;
       const std::size_t in = 2 * (static_cast<std::size_t>(c) * chunk + m.index);
       const Complex Hc(w[in], w[in + 1]);
-      H2 += m.weight * m.mass * std::norm(Hc);
+      acc[2] += m.weight * m.mass * std::norm(Hc);
       h[at] = Hc + to_h * s * v[c];
     }
   });
-  const std::size_t kk = static_cast<std::size_t>(k);
-  out_.residual[kk] = e2 > 0 ? std::sqrt(r2 / e2) : 0.0;
-  out_.H_rms[kk] = std::sqrt(H2 / NN);
+  out_.residual[kk] = sums[0] > 0 ? std::sqrt(sums[1] / sums[0]) : 0.0;
+  out_.H_rms[kk] = std::sqrt(sums[2] / NN);
   have_[kk] = true;
-  // eq. 38 for every pair with a case already in
-  for (std::size_t J = 0; J < 6; ++J) {
-    if (!have_[J])
-      continue;
-    const std::vector<Complex>& g = h_hat_[J];
-    double sum = 0;
-    forEachMode(grid_, [&](const Mode& m) {
+  // eq. 38 for every pair with a case already in, all in one pass over the modes
+  const std::vector<Complex>* g[6] = {};
+  for (std::size_t J = 0; J < 6; ++J)
+    g[J] = have_[J] ? &h_hat_[J] : nullptr;
+  const auto pair = sumOverModes<6>(grid_, [&](const Mode& m, double* acc) {
+    for (std::size_t J = 0; J < 6; ++J) {
+      if (!g[J])
+        continue;
       double dot = 0;
       for (std::size_t c = 0; c < 3; ++c) {
         const std::size_t at = c * Nc + m.index;
-        dot += (h[at] * std::conj(g[at])).real();
+        dot += (h[at] * std::conj((*g[J])[at])).real();
       }
-      sum += m.weight * m.mass * dot;
-    });
-    const double D = rho_bar_ * sum / NN;
+      acc[J] += m.weight * m.mass * dot;
+    }
+  });
+  for (std::size_t J = 0; J < 6; ++J) {
+    if (!have_[J])
+      continue;
+    const double D = rho_bar_ * pair[J] / NN;
     out_.D(static_cast<Eigen::Index>(kk), static_cast<Eigen::Index>(J)) = D;
     out_.D(static_cast<Eigen::Index>(J), static_cast<Eigen::Index>(kk)) = D;
   }
