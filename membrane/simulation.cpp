@@ -4,7 +4,6 @@
 #include "core/format.hpp"
 #include "membrane/integrators/central_difference.hpp"
 #include "membrane/integrators/newmark.hpp"
-#include "membrane/integrators/step_solver.hpp"
 #include "membrane/model/large_deflection.hpp"
 #include "membrane/model/linear_membrane.hpp"
 

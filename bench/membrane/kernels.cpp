@@ -9,7 +9,7 @@
 // best is the least disturbed), CPU times the mean over all threads.
 // Usage: membrane_kernels N THREADS [STEPS] [all|explicit]
 //   explicit: only the SpMV floor and the explicit steps (large meshes)
-#include "membrane/integrators/block_matrix.hpp"
+#include "membrane/model/block_matrix.hpp"
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/io/case_file.hpp"
 #include "membrane/simulation.hpp"

@@ -23,7 +23,7 @@
 /// average-acceleration rule).
 
 #include "core/error.hpp"
-#include "membrane/integrators/block_matrix.hpp"
+#include "membrane/model/block_matrix.hpp"
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/integrators/time_integrator.hpp"
 #include "membrane/loads/load_set.hpp"

@@ -86,23 +86,6 @@ struct alignas(64) Partial {
 };
 } // namespace
 
-void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  const int n = static_cast<int>(A.rows());
-  y.resize(n);
-  const int* outer = A.outerIndexPtr();
-  const int* inner = A.innerIndexPtr();
-  const double* val = A.valuePtr();
-  const double* xp = x.data();
-  double* yp = y.data();
-#pragma omp parallel for schedule(static) if (n > kParallelMin)
-  for (int i = 0; i < n; ++i) {
-    double s = 0;
-    for (int k = outer[i]; k < outer[i + 1]; ++k)
-      s += val[k] * xp[inner[k]];
-    yp[i] = s;
-  }
-}
-
 struct StepSolver::Direct {
 #ifdef LAMINA_HAVE_CHOLMOD
   Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>, Eigen::Lower> llt;

@@ -18,9 +18,9 @@
 /// right-hand sides", 1998): the best combination of past steps in the A
 /// norm, which contains any polynomial extrapolation of them.
 
-#include "membrane/integrators/block_matrix.hpp"
 #include "membrane/integrators/time_integrator.hpp"
 #include "membrane/model/assembly.hpp"
+#include "membrane/model/block_matrix.hpp"
 
 #include <Eigen/Dense>
 
@@ -74,8 +74,5 @@ private:
   std::unique_ptr<Direct> direct_;
   long total_iterations_ = 0, solves_ = 0;
 };
-
-/// y = A x with rows split over OpenMP threads.
-void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& y);
 
 } // namespace lamina::membrane

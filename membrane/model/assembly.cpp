@@ -48,6 +48,9 @@ Matrix9 elementMicroMass(const Mesh& mesh, int e, const Section& s) {
 }
 
 namespace {
+/// Below this many rows a product stays on one thread.
+constexpr int kParallelRows = 30000;
+
 /// Builds the node-block sparsity pattern (node adjacency incl. self) as CSR.
 void nodeGraph(const Mesh& mesh, std::vector<int>& start, std::vector<int>& cols) {
   const int n = mesh.numNodes();
@@ -149,6 +152,23 @@ std::vector<double> nodalAreas(const Mesh& mesh) {
     for (int i : mesh.triangles[e])
       a[i] += mesh.area(e) / 3;
   return a;
+}
+
+void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  const int n = static_cast<int>(A.rows());
+  y.resize(n);
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  const double* val = A.valuePtr();
+  const double* xp = x.data();
+  double* yp = y.data();
+#pragma omp parallel for schedule(static) if (n > kParallelRows)
+  for (int i = 0; i < n; ++i) {
+    double s = 0;
+    for (int k = outer[i]; k < outer[i + 1]; ++k)
+      s += val[k] * xp[inner[k]];
+    yp[i] = s;
+  }
 }
 
 } // namespace lamina::membrane

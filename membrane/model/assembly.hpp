@@ -48,4 +48,8 @@ GlobalMatrices assemble(const Mesh& mesh, const std::vector<Section>& sections, 
 /// Tributary area of each node: sum over its triangles of A_e / 3 (m^2).
 std::vector<double> nodalAreas(const Mesh& mesh);
 
+/// y = A x with rows split over OpenMP threads (each row summed in a fixed
+/// order: the result does not depend on the thread count).
+void multiply(const SparseMatrix& A, const Eigen::VectorXd& x, Eigen::VectorXd& y);
+
 } // namespace lamina::membrane

@@ -1,6 +1,5 @@
 #include "membrane/model/linear_membrane.hpp"
 
-#include "membrane/integrators/step_solver.hpp"
 #include "membrane/model/stable_step.hpp"
 
 #include <chrono>

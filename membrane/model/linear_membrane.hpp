@@ -3,7 +3,7 @@
 /// @brief The membrane paper's model: flat triangles in the x-y plane, small
 /// displacements, f_int = K u with K and M of eqs. (23)-(27).
 
-#include "membrane/integrators/block_matrix.hpp"
+#include "membrane/model/block_matrix.hpp"
 #include "membrane/model/model.hpp"
 #include "membrane/model/structure.hpp"
 

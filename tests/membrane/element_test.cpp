@@ -1,6 +1,6 @@
 // Element and assembly: patch test, rigid motions, isotropic decoupling.
 #include "helpers.hpp"
-#include "membrane/integrators/block_matrix.hpp"
+#include "membrane/model/block_matrix.hpp"
 #include "membrane/model/assembly.hpp"
 #include "membrane/model/mesh.hpp"
 

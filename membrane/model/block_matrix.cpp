@@ -1,4 +1,4 @@
-#include "membrane/integrators/block_matrix.hpp"
+#include "membrane/model/block_matrix.hpp"
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
