@@ -446,6 +446,13 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
     ts.integrator = integrator == "explicit" ? IntegratorKind::Explicit : IntegratorKind::Newmark;
     if (ts.integrator == IntegratorKind::Newmark && model.kind == ModelKind::LargeDeflection)
       t.fail("integrator", "the large-deflection model needs integrator = \"explicit\"");
+    // Row sums of M_D vanish (B of a translation is 0): lumping would drop it.
+    for (size_t k = 0; k < model.sections.size(); ++k)
+      if (ts.integrator == IntegratorKind::Explicit && model.sections[k].hasMicroInertia())
+        t.fail("integrator", "section[" + std::to_string(k) +
+                                 "] has micro-inertia (a dispersion), which needs the Newmark "
+                                 "scheme (its gradient mass cannot be lumped): use integrator = "
+                                 "\"newmark\" or micro_inertia = false in the section");
     const bool expl = ts.integrator == IntegratorKind::Explicit;
     for (const char* key : {"safety", "damping"})
       if (!expl && t.has(key))

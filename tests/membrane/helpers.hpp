@@ -37,6 +37,17 @@ inline Model modelFromText(const std::string& text, const std::string& name = "t
                     testSources());
 }
 
+/// @return the message of the error that building case @p text (named
+/// @p name) gives, "" when it is accepted
+inline std::string buildError(const std::string& text, const std::string& name = "test.toml") {
+  try {
+    modelFromText(text, name);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 /// TOML of a square of side @p L with nx x nx squares and the isotropic
 /// section used throughout (E = 1 GPa, nu = 0.3, rho = 1000, h = 1 mm).
 inline std::string isotropicSquare(int nx, double L = 1.0) {

@@ -22,12 +22,7 @@ std::string strikeCase(const std::string& time = "[time]\ndt = 1.0e-5\nt_end = 1
 }
 
 std::string errorOf(const std::string& text) {
-  try {
-    test::modelFromText(text, "bad.toml");
-  } catch (const lamina::Error& e) {
-    return e.what();
-  }
-  return "";
+  return test::buildError(text, "bad.toml");
 }
 
 /// Expects building @p text to fail with a message holding every one of @p parts.
