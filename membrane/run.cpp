@@ -204,6 +204,7 @@ private:
   Checkpoint resume(Simulation& sim) {
     const auto path = checkpointPath(opt_.out_dir);
     Checkpoint c = readCheckpoint(path);
+    removeCheckpointDebris(path);
     const ErrorContext where{path.string(), 0, ""};
     if (c.case_digest != digest())
       throw Error("checkpoint belongs to another case ('" + c.case_name + "', digest " +

@@ -97,6 +97,14 @@ void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& checkp
   }
 }
 
+void removeCheckpointDebris(const std::filesystem::path& path) {
+  const std::string prefix = core::temporaryPrefix(path);
+  std::error_code ec;
+  for (const auto& f : std::filesystem::directory_iterator(path.parent_path(), ec))
+    if (f.path().filename().string().rfind(prefix, 0) == 0)
+      std::filesystem::remove(f.path(), ec);
+}
+
 Checkpoint readCheckpoint(const std::filesystem::path& path) {
   const ErrorContext where{path.string(), 0, ""};
   if (!std::filesystem::is_regular_file(path))

@@ -140,8 +140,9 @@ TEST(Restart, LargeDeflectionExplicitContinuesBitIdentically) {
 }
 
 // kill -9 after a periodic checkpoint: the tables already hold rows written
-// after it (and are still ".part" files). The restart cuts them back to the
-// checkpoint's step and ends identical to the uninterrupted run.
+// after it (and are still ".part" files), and a later checkpoint write left
+// its temporary. The restart cuts the tables back to the checkpoint's step,
+// removes the temporary and ends identical to the uninterrupted run.
 TEST(Restart, RowsWrittenAfterTheLastCheckpointAreCutBack) {
   const Model model = test::modelFromText(kLinear, "restart-crash.toml");
   const test::Folder dir("restart-crash");
@@ -163,11 +164,14 @@ TEST(Restart, RowsWrittenAfterTheLastCheckpointAreCutBack) {
   fs::copy_file(dir.path / "at20.h5", ck, fs::copy_options::overwrite_existing);
   for (const char* f : {"probes.csv", "energy.csv", "reactions.csv"}) // ...and died before closing
     fs::rename(split.out_dir / f, split.out_dir / (std::string(f) + ".part"));
+  const fs::path debris = split.out_dir / "checkpoint.h5.tmp.99999"; // died writing a checkpoint
+  std::ofstream(debris) << "half a checkpoint";
   split.stop_at_step = 0;
   runModel(periodic, split);
   test::expectSameOutputs(full.out_dir, split.out_dir, model.name);
   for (const auto& f : fs::directory_iterator(split.out_dir))
     EXPECT_NE(f.path().extension(), ".part") << f.path();
+  EXPECT_FALSE(fs::exists(debris));
 }
 
 // The program stopped by SIGTERM mid-run (exit 143, checkpoint written on the
