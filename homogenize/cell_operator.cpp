@@ -1,6 +1,7 @@
 #include "homogenize/cell_operator.hpp"
 
 #include "core/error.hpp"
+#include "homogenize/stencil.hpp"
 
 #include <omp.h>
 
@@ -56,36 +57,24 @@ const double* CellOperator::nodeRow(const double* u, int c, int p, int j) const 
 
 // Stress of voxel plane i (local, -1 .. nx-1; spanning nodes i and i+1) into S
 // (structure of arrays: component a of voxel (j, k) at S[a*componentStride() + j*n2 + k]).
-// The rotated gradient factorises into differences and averages along each
-// axis: d/dx = Dx Ay Az, d/dy = Ax Dy Az, d/dz = Ax Ay Dz. Per node column k
-// we form X = Dx Ay u, Y = Ax Dy u, Z = Ax Ay u from the four node rows and
-// finish along z per voxel (k, k+1): 10 additions per component instead of 21.
+// The strain comes from the shared stencil (stencil.hpp: column sums of the
+// four node rows in scratch rows 0-8, finished along z per voxel; 10
+// additions per component instead of 21).
 void CellOperator::stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S,
                                double* acc, double* energy, double* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t P = componentStride();
-  const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
-  const std::size_t L = static_cast<std::size_t>(n2) + 1; // one wrapped column
+  const std::size_t L = stencil::rowLength(grid_); // one wrapped column
   const std::int32_t* phase =
       i < 0 ? phase_lo_.data() : phase_.data() + static_cast<std::size_t>(i) * dist_.planeSize();
+  const stencil::RowSums sums(scratch, L, grid_);
   for (int j = 0; j < n1; ++j) {
     const int j1 = (j + 1 == n1) ? 0 : j + 1;
     if (u) {
-      for (int c = 0; c < 3; ++c) {
-        const double *a = nodeRow(u, c, i, j), *b = nodeRow(u, c, i + 1, j);
-        const double *cc = nodeRow(u, c, i, j1), *d = nodeRow(u, c, i + 1, j1);
-        double* X = scratch + (3 * c + 0) * L;
-        double* Y = scratch + (3 * c + 1) * L;
-        double* Z = scratch + (3 * c + 2) * L;
-        for (int k = 0; k < n2; ++k) {
-          X[k] = (b[k] - a[k]) + (d[k] - cc[k]);
-          Y[k] = (cc[k] + d[k]) - (a[k] + b[k]);
-          Z[k] = (a[k] + b[k]) + (cc[k] + d[k]);
-        }
-        X[n2] = X[0];
-        Y[n2] = Y[0];
-        Z[n2] = Z[0];
-      }
+      for (int c = 0; c < 3; ++c)
+        stencil::gradientSums(nodeRow(u, c, i, j), nodeRow(u, c, i + 1, j), nodeRow(u, c, i, j1),
+                              nodeRow(u, c, i + 1, j1), n2, scratch + (3 * c + 0) * L,
+                              scratch + (3 * c + 1) * L, scratch + (3 * c + 2) * L);
     }
     const std::size_t row = static_cast<std::size_t>(j) * n2;
     if (u && all_iso_) {
@@ -94,23 +83,8 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
     }
     for (int k = 0; k < n2; ++k) {
       double e[6] = {E[0], E[1], E[2], E[3], E[4], E[5]}; // lamina order, engineering shear
-      if (u) {
-        double g[3][3]; // g[c][d] = d u_c / d x_d
-        for (int c = 0; c < 3; ++c) {
-          const double* X = scratch + (3 * c + 0) * L;
-          const double* Y = scratch + (3 * c + 1) * L;
-          const double* Z = scratch + (3 * c + 2) * L;
-          g[c][0] = cx * (X[k] + X[k + 1]);
-          g[c][1] = cy * (Y[k] + Y[k + 1]);
-          g[c][2] = cz * (Z[k + 1] - Z[k]);
-        }
-        e[0] += g[0][0];
-        e[1] += g[1][1];
-        e[2] += g[2][2];
-        e[3] += g[0][1] + g[1][0];
-        e[4] += g[1][2] + g[2][1];
-        e[5] += g[0][2] + g[2][0];
-      }
+      if (u)
+        stencil::strainAt(sums, E, k, e[0], e[1], e[2], e[3], e[4], e[5]);
       const std::size_t ph = static_cast<std::size_t>(phase[row + k]);
       double sv[6];
       if (iso_[ph]) {
@@ -143,16 +117,15 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
   }
 }
 
-// The stress row of a cell whose phases are all isotropic, from the X, Y, Z
-// column sums in scratch: the phase moduli are gathered into two rows first,
+// The stress row of a cell whose phases are all isotropic, from the column
+// sums in scratch: the phase moduli are gathered into two rows first,
 // so the loop over the voxels has no branch and no indirection and runs in
 // SIMD lanes (omp simd lets the sums of <sigma> and the energy be reordered).
 void CellOperator::isotropicRow(const std::int32_t* phase, const std::array<double, 6>& E,
                                 double* S, double* acc, double* energy, double* scratch) const {
   const int n2 = grid_.n[2];
   const std::size_t P = componentStride();
-  const std::size_t L = static_cast<std::size_t>(n2) + 1;
-  const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
+  const std::size_t L = stencil::rowLength(grid_);
   double* lam = scratch + 9 * L;
   double* mu = scratch + 10 * L;
   for (int k = 0; k < n2; ++k) {
@@ -160,21 +133,14 @@ void CellOperator::isotropicRow(const std::int32_t* phase, const std::array<doub
     lam[k] = lame_[2 * ph];
     mu[k] = lame_[2 * ph + 1];
   }
-  const double *X0 = scratch, *Y0 = scratch + L, *Z0 = scratch + 2 * L;
-  const double *X1 = scratch + 3 * L, *Y1 = scratch + 4 * L, *Z1 = scratch + 5 * L;
-  const double *X2 = scratch + 6 * L, *Y2 = scratch + 7 * L, *Z2 = scratch + 8 * L;
+  const stencil::RowSums sums(scratch, L, grid_);
+  const std::array<double, 6> Ek = E; // a local copy: the stores to S cannot alias it
   double *S0 = S, *S1 = S + P, *S2 = S + 2 * P, *S3 = S + 3 * P, *S4 = S + 4 * P, *S5 = S + 5 * P;
-  const double E0 = E[0], E1 = E[1], E2 = E[2], E3 = E[3], E4 = E[4], E5 = E[5];
   double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, en = 0;
 #pragma omp simd reduction(+ : a0, a1, a2, a3, a4, a5, en)
   for (int k = 0; k < n2; ++k) {
-    // g_cd = d u_c / d x_d; strain in lamina order, engineering shear
-    const double e0 = E0 + cx * (X0[k] + X0[k + 1]);
-    const double e1 = E1 + cy * (Y1[k] + Y1[k + 1]);
-    const double e2 = E2 + cz * (Z2[k + 1] - Z2[k]);
-    const double e3 = E3 + cy * (Y0[k] + Y0[k + 1]) + cx * (X1[k] + X1[k + 1]);
-    const double e4 = E4 + cz * (Z1[k + 1] - Z1[k]) + cy * (Y2[k] + Y2[k + 1]);
-    const double e5 = E5 + cz * (Z0[k + 1] - Z0[k]) + cx * (X2[k] + X2[k + 1]);
+    double e0, e1, e2, e3, e4, e5;
+    stencil::strainAt(sums, Ek, k, e0, e1, e2, e3, e4, e5);
     const double lt = lam[k] * (e0 + e1 + e2), m2 = 2 * mu[k];
     const double s0 = lt + m2 * e0, s1 = lt + m2 * e1, s2 = lt + m2 * e2;
     const double s3 = mu[k] * e3, s4 = mu[k] * e4, s5 = mu[k] * e5;
@@ -214,51 +180,19 @@ void CellOperator::divergencePlane(int i, const double* prev, const double* cur,
                                    double* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t N = dist_.localSize(), P = componentStride();
-  const double cx = 0.25 / grid_.h[0], cy = 0.25 / grid_.h[1], cz = 0.25 / grid_.h[2];
-  const std::size_t L = static_cast<std::size_t>(n2) + 1; // index k+1 holds voxel k, 0 holds n2-1
-  double* X0 = scratch; // x-terms of f_x, f_y, f_z: sigma_xx, xy, xz
-  double* X3 = scratch + L;
-  double* X5 = scratch + 2 * L;
-  double* Y3 = scratch + 3 * L; // y-terms: sigma_xy, yy, yz
-  double* Y1 = scratch + 4 * L;
-  double* Y4 = scratch + 5 * L;
-  double* Z5 = scratch + 6 * L; // z-terms: sigma_xz, yz, zz
-  double* Z4 = scratch + 7 * L;
-  double* Z2 = scratch + 8 * L;
   for (int j = 0; j < n1; ++j) {
     const int jm = (j == 0) ? n1 - 1 : j - 1;
     const std::size_t rj = static_cast<std::size_t>(j) * n2, rm = static_cast<std::size_t>(jm) * n2;
-    auto pr = [&](int a, std::size_t r) { return prev + a * P + r; };
-    auto cu = [&](int a, std::size_t r) { return cur + a * P + r; };
-    const double *p0j = pr(0, rj), *p0m = pr(0, rm), *c0j = cu(0, rj), *c0m = cu(0, rm);
-    const double *p1j = pr(1, rj), *p1m = pr(1, rm), *c1j = cu(1, rj), *c1m = cu(1, rm);
-    const double *p2j = pr(2, rj), *p2m = pr(2, rm), *c2j = cu(2, rj), *c2m = cu(2, rm);
-    const double *p3j = pr(3, rj), *p3m = pr(3, rm), *c3j = cu(3, rj), *c3m = cu(3, rm);
-    const double *p4j = pr(4, rj), *p4m = pr(4, rm), *c4j = cu(4, rj), *c4m = cu(4, rm);
-    const double *p5j = pr(5, rj), *p5m = pr(5, rm), *c5j = cu(5, rj), *c5m = cu(5, rm);
-    for (int k = 0; k < n2; ++k) {
-      X0[k + 1] = (p0j[k] - c0j[k]) + (p0m[k] - c0m[k]);
-      X3[k + 1] = (p3j[k] - c3j[k]) + (p3m[k] - c3m[k]);
-      X5[k + 1] = (p5j[k] - c5j[k]) + (p5m[k] - c5m[k]);
-      Y3[k + 1] = (p3m[k] + c3m[k]) - (p3j[k] + c3j[k]);
-      Y1[k + 1] = (p1m[k] + c1m[k]) - (p1j[k] + c1j[k]);
-      Y4[k + 1] = (p4m[k] + c4m[k]) - (p4j[k] + c4j[k]);
-      Z5[k + 1] = (p5j[k] + c5j[k]) + (p5m[k] + c5m[k]);
-      Z4[k + 1] = (p4j[k] + c4j[k]) + (p4m[k] + c4m[k]);
-      Z2[k + 1] = (p2j[k] + c2j[k]) + (p2m[k] + c2m[k]);
+    const double *pj[6], *pm[6], *cj[6], *cm[6];
+    for (int a = 0; a < 6; ++a) {
+      pj[a] = prev + a * P + rj;
+      pm[a] = prev + a * P + rm;
+      cj[a] = cur + a * P + rj;
+      cm[a] = cur + a * P + rm;
     }
-    for (double* a : {X0, X3, X5, Y3, Y1, Y4, Z5, Z4, Z2})
-      a[0] = a[n2];
     const std::size_t row = (static_cast<std::size_t>(i) * n1 + j) * n2;
-    double* fx = f + row;
-    double* fy = f + N + row;
-    double* fz = f + 2 * N + row;
-    for (int k = 0; k < n2; ++k) {
-      // voxel k sits at index k+1, voxel k-1 at index k
-      fx[k] = cx * (X0[k + 1] + X0[k]) + cy * (Y3[k + 1] + Y3[k]) + cz * (Z5[k] - Z5[k + 1]);
-      fy[k] = cx * (X3[k + 1] + X3[k]) + cy * (Y1[k + 1] + Y1[k]) + cz * (Z4[k] - Z4[k + 1]);
-      fz[k] = cx * (X5[k + 1] + X5[k]) + cy * (Y4[k + 1] + Y4[k]) + cz * (Z2[k] - Z2[k + 1]);
-    }
+    double* const fr[3] = {f + row, f + N + row, f + 2 * N + row};
+    stencil::divergenceRow(pj, pm, cj, cm, grid_, scratch, fr);
   }
 }
 

@@ -42,21 +42,37 @@ std::string utcNow() {
   return buf;
 }
 
+toml::table cellProvenance(const std::string& program, const micro::CellSpec& spec,
+                           const micro::UnitCell& cell) {
+  toml::table p;
+  p.insert("program", program);
+  p.insert("version", LAMINA_VERSION);
+  p.insert("time", utcNow());
+  p.insert("cell_file", spec.file);
+  p.insert("cell_text", spec.text);
+  p.insert("resolution", toml::array{cell.n[0], cell.n[1], cell.n[2]});
+  return p;
+}
+
+double meanDensity(const micro::CellSpec& spec, const micro::UnitCell& cell) {
+  LAMINA_CHECK(cell.voxel_fraction.size() == spec.phases.size(), "the cell has ",
+               cell.voxel_fraction.size(), " phase fractions for ", spec.phases.size(), " phases");
+  double density = 0;
+  for (std::size_t q = 0; q < spec.phases.size(); ++q)
+    density += cell.voxel_fraction[q] * spec.phases[q].density;
+  return density;
+}
+
 materials::Material makeEntry(const std::string& name, const micro::CellSpec& spec,
                               const micro::UnitCell& cell, const Result& result,
                               const Options& options, double J, const Dispersion* dispersion) {
   materials::Material m;
   m.name = name;
   m.C = result.C;
-  m.density = result.density;
+  m.density = meanDensity(spec, cell);
   m.kind = "homogenized";
+  m.provenance = cellProvenance("homogenize", spec, cell);
   toml::table& p = m.provenance;
-  p.insert("program", "homogenize");
-  p.insert("version", LAMINA_VERSION);
-  p.insert("time", utcNow());
-  p.insert("cell_file", spec.file);
-  p.insert("cell_text", spec.text);
-  p.insert("resolution", toml::array{cell.n[0], cell.n[1], cell.n[2]});
   p.insert("voxels", static_cast<std::int64_t>(result.voxels));
   toml::array fractions;
   for (double f : result.voxel_fraction)

@@ -77,6 +77,17 @@ nlohmann::json toJson(const EntryResult& e);
 /// @return the current UTC time as ISO 8601 (provenance "time")
 std::string utcNow();
 
+/// The provenance every homogenized entry (linear or nonlinear) starts with:
+/// program (@p program), version, time (UTC), cell_file, cell_text and
+/// resolution of @p cell.
+toml::table cellProvenance(const std::string& program, const micro::CellSpec& spec,
+                           const micro::UnitCell& cell);
+
+/// @return the volume-averaged density of @p cell (kg/m^3): the phase
+/// densities of @p spec weighted by the cell's voxel fractions (cut voxels
+/// split by their fractions)
+double meanDensity(const micro::CellSpec& spec, const micro::UnitCell& cell);
+
 /// Solver name written to provenance and docs.
 inline constexpr const char* kSolverName =
     "rotated staggered grid (Willot 2015, one-point hex) + FFT-preconditioned CG";

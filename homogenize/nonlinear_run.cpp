@@ -14,10 +14,6 @@
 #include <limits>
 #include <sstream>
 
-#ifndef LAMINA_VERSION
-#define LAMINA_VERSION "unknown"
-#endif
-
 namespace lamina::homogenize {
 
 namespace {
@@ -188,17 +184,9 @@ void addTangentEntries(const micro::CellSpec& spec, const micro::UnitCell& cell,
     m.kind = "homogenized";
     const materials::Stiffness raw(Ct);
     m.C = raw.symmetrized();
-    double density = 0;
-    for (std::size_t q = 0; q < spec.phases.size(); ++q)
-      density += cell.voxel_fraction.at(q) * spec.phases[q].density;
-    m.density = density;
+    m.density = meanDensity(spec, cell);
+    m.provenance = cellProvenance("homogenize (nonlinear: rate-dependent tangent)", spec, cell);
     toml::table& p = m.provenance;
-    p.insert("program", "homogenize (nonlinear: rate-dependent tangent)");
-    p.insert("version", LAMINA_VERSION);
-    p.insert("time", utcNow());
-    p.insert("cell_file", spec.file);
-    p.insert("cell_text", spec.text);
-    p.insert("resolution", toml::array{cell.n[0], cell.n[1], cell.n[2]});
     toml::array names;
     for (const auto& ph : spec.phases)
       names.push_back(ph.name + " (" + ph.source + ", " + materials::toString(ph.law) + ")");

@@ -1,0 +1,68 @@
+#include "homogenize/stencil.hpp"
+
+namespace lamina::homogenize::stencil {
+
+void gradientSums(const double* a, const double* b, const double* c, const double* d, int n2,
+                  double* X, double* Y, double* Z) {
+  for (int k = 0; k < n2; ++k) {
+    X[k] = (b[k] - a[k]) + (d[k] - c[k]);
+    Y[k] = (c[k] + d[k]) - (a[k] + b[k]);
+    Z[k] = (a[k] + b[k]) + (c[k] + d[k]);
+  }
+  X[n2] = X[0];
+  Y[n2] = Y[0];
+  Z[n2] = Z[0];
+}
+
+void strainRow(const double* sums, std::size_t L, const Grid& grid, const std::array<double, 6>& E,
+               double* const eps[6]) {
+  const RowSums rs(sums, L, grid);
+  for (int k = 0; k < grid.n[2]; ++k) {
+    strainAt(rs, E, k, eps[0][k], eps[1][k], eps[2][k], eps[3][k], eps[4][k], eps[5][k]);
+  }
+}
+
+void divergenceRow(const double* const prev_j[6], const double* const prev_m[6],
+                   const double* const cur_j[6], const double* const cur_m[6], const Grid& grid,
+                   double* scratch, double* const f[3]) {
+  const int n2 = grid.n[2];
+  const double cx = 0.25 / grid.h[0], cy = 0.25 / grid.h[1], cz = 0.25 / grid.h[2];
+  const std::size_t L = static_cast<std::size_t>(n2) + 1; // index k+1 holds voxel k, 0 holds n2-1
+  double* X0 = scratch; // x-terms of f_x, f_y, f_z: sigma_xx, xy, xz
+  double* X3 = scratch + L;
+  double* X5 = scratch + 2 * L;
+  double* Y3 = scratch + 3 * L; // y-terms: sigma_xy, yy, yz
+  double* Y1 = scratch + 4 * L;
+  double* Y4 = scratch + 5 * L;
+  double* Z5 = scratch + 6 * L; // z-terms: sigma_xz, yz, zz
+  double* Z4 = scratch + 7 * L;
+  double* Z2 = scratch + 8 * L;
+  const double *p0j = prev_j[0], *p0m = prev_m[0], *c0j = cur_j[0], *c0m = cur_m[0];
+  const double *p1j = prev_j[1], *p1m = prev_m[1], *c1j = cur_j[1], *c1m = cur_m[1];
+  const double *p2j = prev_j[2], *p2m = prev_m[2], *c2j = cur_j[2], *c2m = cur_m[2];
+  const double *p3j = prev_j[3], *p3m = prev_m[3], *c3j = cur_j[3], *c3m = cur_m[3];
+  const double *p4j = prev_j[4], *p4m = prev_m[4], *c4j = cur_j[4], *c4m = cur_m[4];
+  const double *p5j = prev_j[5], *p5m = prev_m[5], *c5j = cur_j[5], *c5m = cur_m[5];
+  for (int k = 0; k < n2; ++k) {
+    X0[k + 1] = (p0j[k] - c0j[k]) + (p0m[k] - c0m[k]);
+    X3[k + 1] = (p3j[k] - c3j[k]) + (p3m[k] - c3m[k]);
+    X5[k + 1] = (p5j[k] - c5j[k]) + (p5m[k] - c5m[k]);
+    Y3[k + 1] = (p3m[k] + c3m[k]) - (p3j[k] + c3j[k]);
+    Y1[k + 1] = (p1m[k] + c1m[k]) - (p1j[k] + c1j[k]);
+    Y4[k + 1] = (p4m[k] + c4m[k]) - (p4j[k] + c4j[k]);
+    Z5[k + 1] = (p5j[k] + c5j[k]) + (p5m[k] + c5m[k]);
+    Z4[k + 1] = (p4j[k] + c4j[k]) + (p4m[k] + c4m[k]);
+    Z2[k + 1] = (p2j[k] + c2j[k]) + (p2m[k] + c2m[k]);
+  }
+  for (double* a : {X0, X3, X5, Y3, Y1, Y4, Z5, Z4, Z2})
+    a[0] = a[n2];
+  double *fx = f[0], *fy = f[1], *fz = f[2];
+  for (int k = 0; k < n2; ++k) {
+    // voxel k sits at index k+1, voxel k-1 at index k
+    fx[k] = cx * (X0[k + 1] + X0[k]) + cy * (Y3[k + 1] + Y3[k]) + cz * (Z5[k] - Z5[k + 1]);
+    fy[k] = cx * (X3[k + 1] + X3[k]) + cy * (Y1[k + 1] + Y1[k]) + cz * (Z4[k] - Z4[k + 1]);
+    fz[k] = cx * (X5[k + 1] + X5[k]) + cy * (Y4[k + 1] + Y4[k]) + cz * (Z2[k] - Z2[k + 1]);
+  }
+}
+
+} // namespace lamina::homogenize::stencil
