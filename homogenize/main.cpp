@@ -170,8 +170,15 @@ int main(int argc, char** argv) {
         precision == "single" ||
         (precision == "auto" && homogenize::autoPrecision(tol) == homogenize::Precision::Single);
     const std::uint64_t per_voxel = 76 + (single ? 12 : 24) + (estimate == "energy" ? 144 : 0);
+    // a cell with a size also gets its dispersion tensor, formed on rank 0
+    // from the whole grid: the spectra h_hat of the six cases (6 x 3 complex
+    // doubles per mode of the half spectrum, 146 bytes per voxel), the FFT
+    // buffer and the density spectrum (32), the gathered displacement of a
+    // case when distributed (24)
+    const std::uint64_t dispersion_per_voxel =
+        spec.physical_size ? 180 + (mpi.ranks() > 1 ? 24 : 0) : 0;
     core::requireMemory(double(voxels * per_voxel / static_cast<std::uint64_t>(mpi.ranks()) +
-                               (mpi.rank() == 0 ? 8 * voxels : 0)),
+                               (mpi.rank() == 0 ? (8 + dispersion_per_voxel) * voxels : 0)),
                         "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
                             " x " + std::to_string(n[2]) + " voxels",
                         {cell_path, 0, resolution > 0 ? "--resolution" : "cell.resolution"},

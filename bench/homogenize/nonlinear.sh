@@ -7,19 +7,15 @@
 # Env: BENCH_N (default 64), BENCH_THREADS (2), BENCH_STEPS (100),
 #      BENCH_TOL (1e-5), BENCH_ETA (0.1), BENCH_OUT (BUILD/bench-nonlinear).
 set -euo pipefail
-BUILD="${1:-build}"
-cd "$(dirname "$0")/../.."
-BIN="$BUILD/bin/homogenize"
-[ -x "$BIN" ] || { echo "build $BIN first" >&2; exit 1; }
-OUT="${BENCH_OUT:-$BUILD/bench-nonlinear}"
-mkdir -p "$OUT"
+source "$(dirname "$0")/common.sh"
+bench_setup bench-nonlinear "${1:-build}"
 N="${BENCH_N:-64}"
 T="${BENCH_THREADS:-2}"
 STEPS="${BENCH_STEPS:-100}"
 TOL="${BENCH_TOL:-1e-5}"
 ETA="${BENCH_ETA:-0.1}"
 echo "nonlinear homogenize bench: ${N}^3, $T threads, $STEPS steps, tol $TOL, eta $ETA," \
-  "$(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%FT%TZ)"
+  "$(bench_machine)"
 /usr/bin/time -v "$BIN" cases/cells/polyurea.toml --resolution "$N" --threads "$T" \
   --path uniaxial-strain --rate 1e4 --to 0.1 --steps "$STEPS" --tol "$TOL" --eta "$ETA" \
   --quiet --out "$OUT/history.csv" 2> "$OUT/time.txt" | tee "$OUT/summary.txt"

@@ -5,15 +5,17 @@
 # E = 156 GPa, and the resolution study of the sphere cell (32^3 against the
 # Richardson extrapolation from 64^3, 128^3 and, with BENCH_256=1, 256^3).
 # Usage: bash bench/homogenize/run.sh [BUILD_DIR]      (make bench runs it)
+# Then one CG iteration against the FFT floor (homogenize_kernels) and, with
+# BENCH_BASELINE=<an older homogenize binary>, old against new on the 128^3
+# sphere cell in alternating runs (the FANS comparison of the README).
 # Env: BENCH_TOL (default 1e-5: C to 5 significant digits), BENCH_256=1,
-#      BENCH_QUICK=1 (64^3 only), BENCH_OUT (default BUILD/bench-homogenize).
+#      BENCH_QUICK=1 (64^3 only), BENCH_OUT (default BUILD/bench-homogenize),
+#      BENCH_BASELINE, BENCH_PAIRS (3), BENCH_PAIR_THREADS (1), BENCH_OLD_TOL (2e-3), BENCH_NEW_TOL
+#      (3e-3: each the loosest tolerance with C within 5e-6 of max|C| of its
+#      own tol 1e-8 answer).
 set -euo pipefail
-BUILD="${1:-build}"
-cd "$(dirname "$0")/../.."
-BIN="$BUILD/bin/homogenize"
-[ -x "$BIN" ] || { echo "build $BIN first" >&2; exit 1; }
-OUT="${BENCH_OUT:-$BUILD/bench-homogenize}"
-mkdir -p "$OUT"
+source "$(dirname "$0")/common.sh"
+bench_setup bench-homogenize "${1:-build}"
 TOL="${BENCH_TOL:-1e-5}"
 LIB="$OUT/library.toml"
 rm -f "$LIB" "$LIB.lock"
@@ -48,7 +50,7 @@ print("%-16s %4d^3 %d thr  wall %7.2f s  peak %7.0f MiB  iterations %s  C11 %.6g
     j["C"][0][0], j["C"][3][3]))'
 }
 
-echo "homogenize bench: tol $TOL, $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(date -u +%FT%TZ)"
+echo "homogenize bench: tol $TOL, $(bench_machine)"
 echo "--- FFTW planning (FFTW_MEASURE above 64^3, wisdom cached in $LAMINA_FFTW_WISDOM):"
 echo "    a first run at each size and thread count pays it; the runs below reuse it"
 for n in $SIZES; do
@@ -125,4 +127,65 @@ for r in rows:
               if abs(R[i][j]) > 1e-6 * m)
     print("  %-16s %4d^3 %d thr: %.1e" % (r["case"], r["n"], r["threads"], err))
 PY
+KERNELS="$BUILD/bin/homogenize_kernels"
+if [ -x "$KERNELS" ]; then
+  echo "--- one CG iteration against the FFT floor (3 r2c + 3 c2r), 128^3, 1 thread, FFTW_MEASURE"
+  for prec in single double; do
+    echo "  $prec precision transforms:"
+    "$KERNELS" 128 1 measure "$prec" | sed 's/^/    /'
+  done
+fi
+
+if [ -n "${BENCH_BASELINE:-}" ]; then
+  PAIRS="${BENCH_PAIRS:-3}" OLD_TOL="${BENCH_OLD_TOL:-2e-3}" NEW_TOL="${BENCH_NEW_TOL:-3e-3}"
+  PAIR_THREADS="${BENCH_PAIR_THREADS:-1}" # 1: user CPU is the work (no OpenMP spin-waiting)
+  plain="$OUT/sphere-plain.toml" # the plain effective C: no size, so no dispersion tensor
+  grep -v '^size' cases/cells/sphere.toml > "$plain"
+  PAIRS_OUT="$OUT/pairs.txt"
+  : > "$PAIRS_OUT"
+  echo "--- old ($BENCH_BASELINE) against new, 128^3 sphere cell without size, $PAIR_THREADS thread(s)," \
+    "$PAIRS alternating pairs, equal accuracy (old tol $OLD_TOL, new $NEW_TOL) and tol 1e-5"
+  # pair BIN TOL LABEL: one run, "LABEL wall user" appended to $PAIRS_OUT
+  pair() {
+    /usr/bin/time -f "$3 %e %U" -a -o "$PAIRS_OUT" "$1" "$plain" --name q --library "$LIB" \
+      --overwrite --resolution 128 --threads "$PAIR_THREADS" --tol "$2" --json --quiet > /dev/null
+  }
+  pair "$BENCH_BASELINE" 1 warm-old # planning and wisdom, not counted
+  pair "$BIN" 1 warm-new
+  for _ in $(seq "$PAIRS"); do
+    pair "$BENCH_BASELINE" 1e-3 old-1e-3 # the issue's configuration of ed9714b (7.5 s idle)
+    pair "$BIN" "$NEW_TOL" new-equal
+    pair "$BENCH_BASELINE" "$OLD_TOL" old-equal
+    pair "$BENCH_BASELINE" 1e-5 old-1e-5
+    pair "$BIN" 1e-5 new-1e-5
+  done
+  echo "  load after: $(bench_machine)"
+  /usr/bin/python3 - "$PAIRS_OUT" <<'PY'
+import collections, statistics, sys
+runs = collections.defaultdict(list)
+for line in open(sys.argv[1]):
+    label, wall, user = line.split()
+    runs[label].append((float(wall), float(user)))
+# FANS figures of issue 13 (same kind of machine): 27 s at its equal-accuracy
+# tol 1e-2, 74 s at 1e-8; lamina ed9714b on the idle machine: 7.5 s at 1e-3,
+# 14.0 s at 1e-5
+med = lambda label, i: statistics.median(r[i] for r in runs[label])
+def show(label):
+    return "%-9s wall %s user %s" % (label, [r[0] for r in runs[label]], [r[1] for r in runs[label]])
+for label in ("old-1e-3", "old-equal", "new-equal", "old-1e-5", "new-1e-5"):
+    if runs[label]:
+        print("  " + show(label))
+for new, old, idle, fans, what in (("new-equal", "old-1e-3", 7.5, 27.0, "equal accuracy against the issue's old tol 1e-3"),
+                                   ("new-equal", "old-equal", None, None, "equal accuracy, old at its own loosest tol"),
+                                   ("new-1e-5", "old-1e-5", 14.0, 74.0, "tol 1e-5")):
+    if not runs[new] or not runs[old]:
+        continue
+    w, u = med(new, 0) / med(old, 0), med(new, 1) / med(old, 1)
+    line = "  %s: new/old (medians) wall %.2f, user CPU %.2f" % (what, w, u)
+    if idle:
+        line += "; x %.1f s (ed9714b idle) = %.1f s, %.2fx FANS's %.0f s (wall ratio), %.2fx (CPU ratio)" % (
+            idle, w * idle, w * idle / fans, fans, u * idle / fans)
+    print(line)
+PY
+fi
 echo "results: $RES"
