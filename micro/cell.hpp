@@ -9,6 +9,7 @@
 /// resolution = 32            # N or [N1, N2, N3] voxels
 /// size = [20e-6, 20e-6, 20e-6]  # optional, cell edge lengths in metres
 ///                            # (absent: scale-free cell of edge 1, no micro-inertia)
+/// composite_voxels = true    # default: cut voxels get a laminate stiffness
 /// [[phases]]                 # the first phase is the matrix
 /// name = "soft"
 /// catalog = "polyurea-soft"  # or law = "isotropic" / "anisotropic" / "gvbo" ...

@@ -34,7 +34,7 @@ struct Solved {
 Solved solve(const std::string& text, double tol) {
   const micro::CellSpec spec = cellFrom(text);
   Solved s{micro::buildCell(spec), {}, spec.stiffnessesAt(1.0)};
-  s.r = homogenizeMap(s.cell.n, s.cell.phase, s.C, tol, spec.densities());
+  s.r = homogenizeUnitCell(s.cell, s.C, tol, spec.densities());
   return s;
 }
 

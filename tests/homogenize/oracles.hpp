@@ -6,6 +6,8 @@
 #include "homogenize/grid.hpp"
 #include "homogenize/homogenizer.hpp"
 #include "materials/stiffness.hpp"
+#include "micro/composite_voxel.hpp"
+#include "micro/unit_cell.hpp"
 
 #include <gtest/gtest.h>
 
@@ -138,6 +140,16 @@ inline homogenize::Result homogenizeMap(const std::array<int, 3>& n,
   o.tol = tol;
   homogenize::Homogenizer h(g, phase, C, density, o);
   return h.run();
+}
+
+/// Runs the homogenizer on a generated cell as `homogenize` does: its
+/// composite voxels (if any) enter with their laminate stiffness and mixed
+/// density (micro::voxelMaterials), the other voxels with their phase's.
+inline homogenize::Result homogenizeUnitCell(const micro::UnitCell& cell,
+                                             const std::vector<Stiffness>& C, double tol,
+                                             const std::vector<double>& density) {
+  micro::VoxelMaterials vm = micro::voxelMaterials(cell, C, density);
+  return homogenizeMap(cell.n, vm.phase, vm.C, tol, vm.density);
 }
 
 /// Relative max-norm distance of two matrices, relative to max |b|.
