@@ -47,23 +47,37 @@ double layerFraction(const Inclusion& inc, const Eigen::Vector3d& p, const Eigen
 
 /// Fraction of the curved inclusion @p inc in the voxel of lower corner
 /// @p corner and edges @p h, counted on kSubSamples^3 points; -1 when its 8
-/// corners lie on one side (not cut).
+/// corners lie on one side (not cut). With @p nearestCopy (an oblique fibre
+/// whose copies are more than 2 r + |h| apart) only the copy of the axis
+/// nearest the voxel centre is tested: a copy holding a point of the voxel
+/// passes within r + |h|/2 of the centre, and any other copy then lies
+/// farther than that (the copies are a spacing apart), so the answer is the
+/// same while the search over the periodic copies runs once per voxel.
 double sampledFraction(const Inclusion& inc, const Eigen::Vector3d& corner,
-                       const Eigen::Vector3d& h, const Eigen::Vector3d& L) {
+                       const Eigen::Vector3d& h, const Eigen::Vector3d& L, bool nearestCopy) {
+  const Eigen::Vector3d centre = corner + 0.5 * h;
+  const Eigen::Vector3d dir = inc.unitDirection(L);
+  const Eigen::Vector3d foot =
+      nearestCopy ? Eigen::Vector3d(centre - inc.axisOffset(centre, L)) : Eigen::Vector3d::Zero();
+  auto inside = [&](const Eigen::Vector3d& x) {
+    if (!nearestCopy)
+      return inc.contains(x, L);
+    const Eigen::Vector3d v = x - foot;
+    return (v - v.dot(dir) * dir).squaredNorm() <= inc.radius * inc.radius;
+  };
   int in = 0;
   for (int c = 0; c < 8; ++c)
-    in += inc.contains(
-        corner + Eigen::Vector3d((c & 1) * h[0], ((c >> 1) & 1) * h[1], ((c >> 2) & 1) * h[2]), L);
+    in += inside(corner +
+                 Eigen::Vector3d((c & 1) * h[0], ((c >> 1) & 1) * h[1], ((c >> 2) & 1) * h[2]));
   if (in == 0 || in == 8)
     return -1;
   int count = 0;
   for (int a = 0; a < kSubSamples; ++a)
     for (int b = 0; b < kSubSamples; ++b)
       for (int c = 0; c < kSubSamples; ++c)
-        count += inc.contains(corner + Eigen::Vector3d((a + 0.5) / kSubSamples * h[0],
-                                                       (b + 0.5) / kSubSamples * h[1],
-                                                       (c + 0.5) / kSubSamples * h[2]),
-                              L);
+        count += inside(corner + Eigen::Vector3d((a + 0.5) / kSubSamples * h[0],
+                                                 (b + 0.5) / kSubSamples * h[1],
+                                                 (c + 0.5) / kSubSamples * h[2]));
   return static_cast<double>(count) / (kSubSamples * kSubSamples * kSubSamples);
 }
 
@@ -136,6 +150,8 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
   std::unordered_map<std::size_t, std::vector<std::pair<int, double>>> cut;
   for (std::size_t q = 0; q < inclusions.size(); ++q) {
     const Inclusion& inc = inclusions[q];
+    const bool nearestCopy = inc.shape == Shape::Fiber && inc.axis < 0 &&
+                             inc.periodicSpacing(size) > 2 * inc.radius + h.norm();
     std::array<int, 3> lo{}, hi{};
     voxelRange(inc, n, size, lo, hi);
     std::vector<std::pair<std::size_t, double>> found;
@@ -154,7 +170,7 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
               if ((f == 0 && !centre) || (f == 1 && centre))
                 continue; // whole voxel on the side its centre sampled
             } else {
-              f = sampledFraction(inc, corner, h, size);
+              f = sampledFraction(inc, corner, h, size, nearestCopy);
               if (f < 0)
                 continue;
             }

@@ -91,6 +91,15 @@ Eigen::Vector3d Inclusion::unitDirection(const Eigen::Vector3d& L) const {
   return Eigen::Vector3d(lattice[0] * L[0], lattice[1] * L[1], lattice[2] * L[2]).normalized();
 }
 
+Eigen::Vector3d Inclusion::axisOffset(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const {
+  const Eigen::Vector3d d = nearestImage(p - center, L);
+  if (axis < 0)
+    return offsetFromFiber(d, unitDirection(L), lattice, L);
+  Eigen::Vector3d off = d;
+  off[axis] = 0;
+  return off;
+}
+
 double Inclusion::periodicSpacing(const Eigen::Vector3d& L) const {
   if (shape == Shape::Layer)
     return 1.0 / reciprocal(lattice, L).norm();

@@ -48,6 +48,9 @@ struct Inclusion {
   /// @return the unit outward normal of the surface near @p p (the gradient
   /// direction of the shape's defining function there)
   Eigen::Vector3d normalAt(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const;
+  /// @return fiber: the offset of @p p from the nearest periodic copy of the
+  /// axis (perpendicular to it; its norm is the distance to the axis)
+  Eigen::Vector3d axisOffset(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const;
   /// @return oblique fiber: the distance between neighbouring parallel
   /// copies (the fiber must be thinner); oblique layer: the plane spacing
   double periodicSpacing(const Eigen::Vector3d& L) const;
