@@ -12,11 +12,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace lamina::core {
@@ -89,6 +91,28 @@ public:
   std::string getString(std::string_view key) const;
   /// Optional string with a default.
   std::string getString(std::string_view key, const std::string& fallback) const;
+  /// Optional choice: the string at @p key (or @p fallback when absent)
+  /// mapped through @p choices (name, value). Any other string is an error
+  /// naming the key and listing the names. One vocabulary per choice: the
+  /// enum the caller keeps, never the string.
+  template <class E>
+  E getChoice(std::string_view key, std::initializer_list<std::pair<std::string_view, E>> choices,
+              E fallback) const {
+    if (!has(key))
+      return fallback;
+    const std::string v = getString(key);
+    std::string names;
+    std::size_t k = 0;
+    for (const auto& [name, value] : choices) {
+      if (name == v)
+        return value;
+      if (k > 0)
+        names += k + 1 == choices.size() ? " or " : ", ";
+      names += "\"" + std::string(name) + "\"";
+      ++k;
+    }
+    fail(key, "unknown value \"" + v + "\" (expected " + names + ")");
+  }
   /// Required array of finite numbers.
   std::vector<double> getDoubleArray(std::string_view key) const;
   /// Required array of strings.

@@ -374,7 +374,7 @@ private:
     }
     const SolverStats st = sim.integrator().stats();
     s["solver"] = {
-        {"type", model_.time.solver},
+        {"type", linearSolverName(model_.time.solver)},
         {"mean_iterations", st.solves ? double(st.iterations) / double(st.solves) : 0.0}};
     s["wall_s"] = wall_s_;
     s["assembly_s"] = sim.assemblySeconds();

@@ -94,11 +94,11 @@ struct StepSolver::Direct {
 #endif
 };
 
-StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance,
+StepSolver::StepSolver(const SparseMatrix& A, LinearSolverKind kind, double tolerance,
                        int max_iterations, int projection)
     : kind_(kind), tolerance_(tolerance), max_iterations_(max_iterations), projection_(projection) {
   const int n = static_cast<int>(A.rows());
-  if (kind_ == "cholesky") {
+  if (kind_ == LinearSolverKind::Cholesky) {
     direct_ = std::make_unique<Direct>();
     const Eigen::SparseMatrix<double> Ac = A;
     direct_->llt.compute(Ac);
@@ -107,7 +107,6 @@ StepSolver::StepSolver(const SparseMatrix& A, const std::string& kind, double to
                   "(matrix not positive definite?)");
     return;
   }
-  LAMINA_CHECK(kind_ == "cg", "unknown solver '", kind_, "'");
   // Block-Jacobi: invert the 3x3 diagonal block of every node.
   Ab_ = BlockMatrix(A);
   const int nn = n / 3;

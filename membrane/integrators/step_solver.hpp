@@ -21,6 +21,7 @@
 #include "membrane/integrators/time_integrator.hpp"
 #include "membrane/model/assembly.hpp"
 #include "membrane/model/block_matrix.hpp"
+#include "membrane/model/model.hpp"
 
 #include <Eigen/Dense>
 
@@ -33,9 +34,9 @@ namespace lamina::membrane {
 class StepSolver {
 public:
   /// Sets up the solver for @p A (symmetric positive definite, 3x3 block
-  /// pattern). @p kind is "cg" or "cholesky". A is copied (blocks) or
-  /// factorized: it need not outlive the solver.
-  StepSolver(const SparseMatrix& A, const std::string& kind, double tolerance, int max_iterations,
+  /// pattern) with the method @p kind. A is copied (blocks) or factorized:
+  /// it need not outlive the solver.
+  StepSolver(const SparseMatrix& A, LinearSolverKind kind, double tolerance, int max_iterations,
              int projection = 0);
   ~StepSolver();
   StepSolver(const StepSolver&) = delete;
@@ -62,7 +63,7 @@ private:
   void project(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   void remember(const Eigen::VectorXd& x);
   BlockMatrix Ab_; // the same matrix in 3x3 blocks, for the CG products
-  std::string kind_;
+  LinearSolverKind kind_;
   double tolerance_;
   int max_iterations_;
   std::vector<double> block_inverse_;   // block-Jacobi: 9 per stored row of Ab_, row-major

@@ -68,8 +68,11 @@ Eigen::Vector3d readDirection(const core::TableReader& r, const Eigen::Vector3d&
 }
 
 /// The one selector key of a table: nodes (set name), box, at, region or all.
+/// What a selector key selects by.
+enum class SelectBy { Nodes, Box, At, Region, All };
+
 struct Selector {
-  std::string kind; // "nodes", "box", "at", "region", "all"
+  SelectBy kind = SelectBy::All;
   std::string name;
   std::array<double, 4> box{};
   Eigen::Vector2d at = Eigen::Vector2d::Zero();
@@ -85,22 +88,27 @@ Selector readSelector(const core::TableReader& r) {
   if (count != 1)
     r.failHere("give exactly one of nodes, box, at, region, all");
   if (r.has("nodes")) {
-    s.kind = s.key = "nodes";
+    s.kind = SelectBy::Nodes;
+    s.key = "nodes";
     s.name = r.getString("nodes");
   } else if (r.has("box")) {
-    s.kind = s.key = "box";
+    s.kind = SelectBy::Box;
+    s.key = "box";
     const auto v = r.getDoubleArray("box");
     if (v.size() != 4 || !(v[0] <= v[1]) || !(v[2] <= v[3]))
       r.fail("box", "expected [xmin, xmax, ymin, ymax]");
     std::copy(v.begin(), v.end(), s.box.begin());
   } else if (r.has("at")) {
-    s.kind = s.key = "at";
+    s.kind = SelectBy::At;
+    s.key = "at";
     s.at = readPoint(r, "at");
   } else if (r.has("region")) {
-    s.kind = s.key = "region";
+    s.kind = SelectBy::Region;
+    s.key = "region";
     s.name = r.getString("region");
   } else {
-    s.kind = s.key = "all";
+    s.kind = SelectBy::All;
+    s.key = "all";
     if (!r.getBool("all", false))
       r.fail("all", "all = false selects nothing");
   }
@@ -141,7 +149,7 @@ bool inBox(const Eigen::Vector2d& p, const std::array<double, 4>& b, double tol)
 std::vector<int> selectNodes(const Mesh& m, const Selector& s, const core::TableReader& r) {
   std::vector<int> out;
   const double tol = 1e-9 * m.maxEdge();
-  if (s.kind == "nodes") {
+  if (s.kind == SelectBy::Nodes) {
     auto it = m.node_sets.find(s.name);
     if (it == m.node_sets.end()) {
       std::string have;
@@ -151,13 +159,13 @@ std::vector<int> selectNodes(const Mesh& m, const Selector& s, const core::Table
              "mesh " + m.source + " has no node set '" + s.name + "' (sets: " + have + ")");
     }
     out = it->second;
-  } else if (s.kind == "box") {
+  } else if (s.kind == SelectBy::Box) {
     for (int i = 0; i < m.numNodes(); ++i)
       if (inBox(m.nodes[i], s.box, tol))
         out.push_back(i);
-  } else if (s.kind == "at") {
+  } else if (s.kind == SelectBy::At) {
     out.push_back(nodeAt(m, s.at, r, "at"));
-  } else if (s.kind == "region") {
+  } else if (s.kind == SelectBy::Region) {
     const int reg = regionIndex(m, s.name, r, "region");
     std::set<int> nodes;
     for (int e = 0; e < m.numElements(); ++e)
@@ -176,13 +184,13 @@ std::vector<int> selectNodes(const Mesh& m, const Selector& s, const core::Table
 std::vector<int> selectElements(const Mesh& m, const Selector& s, const core::TableReader& r) {
   std::vector<int> out;
   const double tol = 1e-9 * m.maxEdge();
-  if (s.kind == "nodes") {
+  if (s.kind == SelectBy::Nodes) {
     r.fail("nodes", "this load acts on elements: select them with box, at, region or all");
-  } else if (s.kind == "box") {
+  } else if (s.kind == SelectBy::Box) {
     for (int e = 0; e < m.numElements(); ++e)
       if (inBox(m.centroid(e), s.box, tol))
         out.push_back(e);
-  } else if (s.kind == "at") {
+  } else if (s.kind == SelectBy::At) {
     // The triangle containing the point (barycentric test).
     for (int e = 0; e < m.numElements() && out.empty(); ++e) {
       const auto& t = m.triangles[e];
@@ -195,7 +203,7 @@ std::vector<int> selectElements(const Mesh& m, const Selector& s, const core::Ta
           cross(a - c, s.at - c) >= eps)
         out.push_back(e);
     }
-  } else if (s.kind == "region") {
+  } else if (s.kind == SelectBy::Region) {
     const int reg = regionIndex(m, s.name, r, "region");
     for (int e = 0; e < m.numElements(); ++e)
       if (m.region_of[e] == reg)
@@ -439,11 +447,11 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
   {
     const auto t = root.table("time");
     auto& ts = model.time;
-    const std::string integrator = t.getString(
-        "integrator", model.kind == ModelKind::LargeDeflection ? "explicit" : "newmark");
-    if (integrator != "newmark" && integrator != "explicit")
-      t.fail("integrator", "integrator must be \"newmark\" or \"explicit\"");
-    ts.integrator = integrator == "explicit" ? IntegratorKind::Explicit : IntegratorKind::Newmark;
+    ts.integrator =
+        t.getChoice("integrator",
+                    {{"newmark", IntegratorKind::Newmark}, {"explicit", IntegratorKind::Explicit}},
+                    model.kind == ModelKind::LargeDeflection ? IntegratorKind::Explicit
+                                                             : IntegratorKind::Newmark);
     if (ts.integrator == IntegratorKind::Newmark && model.kind == ModelKind::LargeDeflection)
       t.fail("integrator", "the large-deflection model needs integrator = \"explicit\"");
     // Row sums of M_D vanish (B of a translation is 0): lumping would drop it.
@@ -494,16 +502,13 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
       ts.beta1 = 0.5 - ts.hht_alpha;
       ts.beta2 = 0.5 * (1 - ts.hht_alpha) * (1 - ts.hht_alpha);
     }
-    const std::string mass = t.getString("mass", "consistent");
-    if (mass != "consistent" && mass != "lumped")
-      t.fail("mass", "mass must be \"consistent\" or \"lumped\"");
-    ts.lumped = mass == "lumped";
+    ts.lumped = t.getChoice("mass", {{"consistent", false}, {"lumped", true}}, false);
   }
   if (auto s = root.optionalTable("solver")) {
     auto& ts = model.time;
-    ts.solver = s->getString("type", "cg");
-    if (ts.solver != "cg" && ts.solver != "cholesky")
-      s->fail("type", "solver type must be \"cg\" or \"cholesky\"");
+    ts.solver = s->getChoice(
+        "type", {{"cg", LinearSolverKind::Cg}, {"cholesky", LinearSolverKind::Cholesky}},
+        LinearSolverKind::Cg);
     ts.tolerance = s->getDouble("tolerance", ts.tolerance);
     if (!(ts.tolerance > 0 && ts.tolerance < 1))
       s->fail("tolerance", "must be in (0, 1)");
@@ -561,7 +566,7 @@ std::vector<int> readConstraints(const core::TableReader& root, Model& model) {
   for (const auto& r : root.tableArray("fixed")) {
     const Selector sel = readSelector(r);
     Constraint c;
-    c.name = r.getString("name", sel.kind == "nodes"
+    c.name = r.getString("name", sel.kind == SelectBy::Nodes
                                      ? sel.name
                                      : "fixed" + std::to_string(model.constraints.size()));
     addConstraint(r, std::move(c), selectNodes(mesh, sel, r), r.getString("components", "xyz"),
@@ -616,7 +621,7 @@ void readLoads(const core::TableReader& root, Model& model) {
       const auto elems =
           r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all")
               ? selectElements(mesh, readSelector(r), r)
-              : selectElements(mesh, Selector{"all", "", {}, {}, "all"}, r);
+              : selectElements(mesh, Selector{SelectBy::All, "", {}, {}, "all"}, r);
       if (model.kind == ModelKind::LargeDeflection) {
         // Follows the surface: current normal, current area.
         model.surface_loads.push_back(
@@ -702,7 +707,7 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
     const bool selected =
         r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all");
     const auto elems = selectElements(
-        model.mesh, selected ? readSelector(r) : Selector{"all", "", {}, {}, "all"}, r);
+        model.mesh, selected ? readSelector(r) : Selector{SelectBy::All, "", {}, {}, "all"}, r);
     const std::string name =
         r.getString("name", "blast" + std::to_string(model.surface_loads.size()));
     if (r.has("table")) {
@@ -725,14 +730,12 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
     if (pos.size() != 3)
       r.fail("position", "expected [x, y, z] (m)");
     c.position = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-    const std::string burst = r.getString("burst", "hemispherical");
-    if (burst != "hemispherical" && burst != "spherical")
-      r.fail("burst", "unknown burst '" + burst + "' (expected hemispherical or spherical)");
-    c.burst = parseBurst(burst);
-    const std::string range = r.getString("out_of_range", "refuse");
-    if (range != "refuse" && range != "clamp")
-      r.fail("out_of_range", "expected \"refuse\" or \"clamp\"");
-    c.policy = range == "clamp" ? OutOfRange::Clamp : OutOfRange::Refuse;
+    c.burst = r.getChoice(
+        "burst", {{"hemispherical", Burst::Hemispherical}, {"spherical", Burst::Spherical}},
+        Burst::Hemispherical);
+    c.policy =
+        r.getChoice("out_of_range", {{"refuse", OutOfRange::Refuse}, {"clamp", OutOfRange::Clamp}},
+                    OutOfRange::Refuse);
     try {
       model.surface_loads.push_back(std::make_shared<BlastPressure>(name, elems, model.mesh, c));
     } catch (const Error& e) {
@@ -746,8 +749,9 @@ void readDrags(const core::TableReader& root, Model& model) {
   const int n = mesh.numNodes();
   for (const auto& r : root.tableArray("drag")) {
     Drag d;
-    const Selector sel = r.has("region") ? readSelector(r) : Selector{"all", "", {}, {}, "all"};
-    if (sel.kind != "region" && sel.kind != "all")
+    const Selector sel =
+        r.has("region") ? readSelector(r) : Selector{SelectBy::All, "", {}, {}, "all"};
+    if (sel.kind != SelectBy::Region && sel.kind != SelectBy::All)
       r.failHere("drag acts on a surface region: give region = NAME (or nothing for all)");
     d.cd = r.getDouble("cd");
     if (!(d.cd > 0))
@@ -755,10 +759,7 @@ void readDrags(const core::TableReader& root, Model& model) {
     d.fluid_density = r.getDouble("fluid_density", 1.225);
     if (!(d.fluid_density > 0))
       r.fail("fluid_density", "must be > 0");
-    const std::string measure = r.getString("velocity", "normal");
-    if (measure != "normal" && measure != "resultant")
-      r.fail("velocity", "velocity must be \"normal\" or \"resultant\"");
-    d.resultant = measure == "resultant";
+    d.resultant = r.getChoice("velocity", {{"normal", false}, {"resultant", true}}, false);
     const auto elems = selectElements(mesh, sel, r);
     if (model.kind == ModelKind::LargeDeflection) {
       model.surface_loads.push_back(
@@ -814,12 +815,9 @@ void readInitial(const core::TableReader& root, Model& model) {
 
 /// Top-level `model`: "linear" (default) or "large_deflection".
 ModelKind readModelKind(const core::TableReader& root) {
-  const std::string kind = root.getString("model", "linear");
-  if (kind == "linear")
-    return ModelKind::Linear;
-  if (kind == "large_deflection")
-    return ModelKind::LargeDeflection;
-  root.fail("model", "model must be \"linear\" or \"large_deflection\"");
+  return root.getChoice(
+      "model", {{"linear", ModelKind::Linear}, {"large_deflection", ModelKind::LargeDeflection}},
+      ModelKind::Linear);
 }
 
 /// Parses `components` (a subset of "xyz") into component indices.

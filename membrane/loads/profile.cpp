@@ -7,22 +7,28 @@ namespace lamina::membrane {
 
 TimeProfile TimeProfile::read(const core::TableReader& r) {
   TimeProfile p;
-  p.kind_ = r.getString("profile", "constant");
-  if (p.kind_ == "constant")
+  p.kind_ = r.getChoice("profile",
+                        {{"constant", Kind::Constant},
+                         {"step", Kind::Step},
+                         {"ramp", Kind::Ramp},
+                         {"pulse", Kind::Pulse},
+                         {"table", Kind::Table}},
+                        Kind::Constant);
+  if (p.kind_ == Kind::Constant)
     return p;
-  if (p.kind_ == "step") {
+  if (p.kind_ == Kind::Step) {
     p.t0_ = r.getDouble("t0", 0.0);
-  } else if (p.kind_ == "ramp") {
+  } else if (p.kind_ == Kind::Ramp) {
     p.t0_ = r.getDouble("t0", 0.0);
     p.rise_ = r.getDouble("rise");
     if (!(p.rise_ > 0))
       r.fail("rise", "ramp rise time must be > 0");
-  } else if (p.kind_ == "pulse") {
+  } else if (p.kind_ == Kind::Pulse) {
     p.t0_ = r.getDouble("t0", 0.0);
     p.duration_ = r.getDouble("duration");
     if (!(p.duration_ > 0))
       r.fail("duration", "pulse duration must be > 0");
-  } else if (p.kind_ == "table") {
+  } else { // Kind::Table
     const auto m = r.getMatrix("table");
     if (m.empty())
       r.fail("table", "table profile needs at least one [t, f] row");
@@ -34,20 +40,18 @@ TimeProfile TimeProfile::read(const core::TableReader& r) {
       p.tt_.push_back(row[0]);
       p.ff_.push_back(row[1]);
     }
-  } else {
-    r.fail("profile", "unknown profile '" + p.kind_ + "' (constant, step, ramp, pulse, table)");
   }
   return p;
 }
 
 double TimeProfile::operator()(double t) const {
-  if (kind_ == "constant")
+  if (kind_ == Kind::Constant)
     return 1.0;
-  if (kind_ == "step")
+  if (kind_ == Kind::Step)
     return t >= t0_ ? 1.0 : 0.0;
-  if (kind_ == "ramp")
+  if (kind_ == Kind::Ramp)
     return std::clamp((t - t0_) / rise_, 0.0, 1.0);
-  if (kind_ == "pulse")
+  if (kind_ == Kind::Pulse)
     return (t >= t0_ && t < t0_ + duration_) ? 1.0 : 0.0;
   // table
   if (t <= tt_.front())

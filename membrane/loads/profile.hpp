@@ -23,11 +23,13 @@ public:
   static TimeProfile read(const core::TableReader& r);
   /// @return f(t)
   double operator()(double t) const;
-  /// @return the kind name
-  const std::string& kind() const { return kind_; }
+  /// The shapes a profile takes (key `profile`).
+  enum class Kind { Constant, Step, Ramp, Pulse, Table };
+  /// @return the shape
+  Kind kind() const { return kind_; }
 
 private:
-  std::string kind_ = "constant";
+  Kind kind_ = Kind::Constant;
   double t0_ = 0, rise_ = 0, duration_ = 0;
   std::vector<double> tt_, ff_;
 };

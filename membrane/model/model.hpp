@@ -43,6 +43,17 @@ enum class IntegratorKind {
   Explicit ///< central differences, lumped mass (the large-deflection model's default)
 };
 
+/// The linear solver of a Newmark step (key `solver.type`).
+enum class LinearSolverKind {
+  Cg,      ///< block-Jacobi preconditioned CG, warm started ("cg", the default)
+  Cholesky ///< sparse Cholesky factorization once, then triangular solves ("cholesky")
+};
+
+/// @return the case-file name of @p kind ("cg" or "cholesky")
+inline const char* linearSolverName(LinearSolverKind kind) {
+  return kind == LinearSolverKind::Cholesky ? "cholesky" : "cg";
+}
+
 /// DOFs that move together (a rigid translating frame): one acceleration,
 /// total force over total mass. Explicit integrator only.
 struct RigidSet {
@@ -53,15 +64,15 @@ struct RigidSet {
 /// Time integration and solver settings.
 struct TimeSettings {
   IntegratorKind integrator = IntegratorKind::Newmark; ///< the scheme
-  double safety = 0.9;       ///< explicit: dt = safety * stable step (when dt = 0)
-  double damping = 0;        ///< explicit: mass-proportional damping c (1/s), F = -c M v
-  double dt = 0;             ///< tau, s (explicit: 0 = safety * stable step)
-  double t_end = 0;          ///< s
-  double beta1 = 0.5;        ///< Newmark beta1 (eq. 30; gamma in other texts)
-  double beta2 = 0.5;        ///< Newmark beta2 (eq. 30; 2 beta in other texts)
-  double hht_alpha = 0;      ///< HHT-alpha in [-1/3, 0]; 0 = the paper's scheme
-  bool lumped = false;       ///< lumped (row-sum) instead of consistent mass
-  std::string solver = "cg"; ///< "cg" (block-Jacobi PCG, warm started) or "cholesky"
+  double safety = 0.9;  ///< explicit: dt = safety * stable step (when dt = 0)
+  double damping = 0;   ///< explicit: mass-proportional damping c (1/s), F = -c M v
+  double dt = 0;        ///< tau, s (explicit: 0 = safety * stable step)
+  double t_end = 0;     ///< s
+  double beta1 = 0.5;   ///< Newmark beta1 (eq. 30; gamma in other texts)
+  double beta2 = 0.5;   ///< Newmark beta2 (eq. 30; 2 beta in other texts)
+  double hht_alpha = 0; ///< HHT-alpha in [-1/3, 0]; 0 = the paper's scheme
+  bool lumped = false;  ///< lumped (row-sum) instead of consistent mass
+  LinearSolverKind solver = LinearSolverKind::Cg; ///< Newmark's linear solver
   double tolerance = 1e-10;  ///< relative residual of the CG solve (1e-10: answers equal the
                              ///< factorized solve to ~4e-11, bench/membrane)
   int max_iterations = 2000; ///< CG iteration limit per solve

@@ -138,3 +138,26 @@ TEST(TomlErrors, ErrorTextHasOnlyKnownParts) {
   EXPECT_STREQ(lamina::Error("boom", {"", 0, "steel"}).what(), "'steel': boom");
   EXPECT_STREQ(lamina::Error("boom").what(), "boom");
 }
+
+// A choice key maps its names to an enum; another name is an error naming the
+// file, line and key and listing every accepted name; an absent key gives the
+// fallback.
+TEST(TomlErrors, UnknownChoiceNamesKeyAndListsTheChoices) {
+  enum class Pick { A, B, C };
+  const toml::table doc =
+      core::parseTomlString("[loads]\nkind = \"b\"\nshape = \"triangle\"\n", "case.toml");
+  const core::TableReader loads = core::TableReader(doc, "case.toml").table("loads");
+  const auto choices = {std::pair<std::string_view, Pick>{"a", Pick::A},
+                        std::pair<std::string_view, Pick>{"b", Pick::B},
+                        std::pair<std::string_view, Pick>{"c", Pick::C}};
+  EXPECT_EQ(loads.getChoice("kind", choices, Pick::A), Pick::B);
+  EXPECT_EQ(loads.getChoice("absent", choices, Pick::C), Pick::C);
+  const lamina::Error e = errorOf([&] { loads.getChoice("shape", choices, Pick::A); });
+  EXPECT_EQ(e.context().file, "case.toml");
+  EXPECT_EQ(e.context().line, 3);
+  EXPECT_EQ(e.context().key, "loads.shape");
+  EXPECT_NE(
+      std::string(e.what()).find("unknown value \"triangle\" (expected \"a\", \"b\" or \"c\")"),
+      std::string::npos)
+      << e.what();
+}
