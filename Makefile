@@ -39,13 +39,13 @@ test-fast: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L 'unit|malformed'
 
 test-sanitize: deps
-	cmake -S . -B $(SAN_BUILD) -DCMAKE_BUILD_TYPE=Release -DLAMINA_SANITIZE=ON $(CMAKE_FLAGS)
+	cmake -S . -B $(SAN_BUILD) -DCMAKE_BUILD_TYPE=Release -DLAMINA_SANITIZE=ON -DLAMINA_MPI=OFF $(CMAKE_FLAGS)
 	cmake --build $(SAN_BUILD) -j $(JOBS) --target lamina_sanitize_tests
 	cd $(SAN_BUILD) && $(SAN_ENV) ctest --output-on-failure -j $(JOBS) -L 'unit|malformed|regression'
 
 fuzz: deps
 	CXX=clang++ CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Release \
-	  -DLAMINA_FUZZ=ON -DLAMINA_BUILD_TESTS=OFF $(CMAKE_FLAGS)
+	  -DLAMINA_FUZZ=ON -DLAMINA_BUILD_TESTS=OFF -DLAMINA_MPI=OFF $(CMAKE_FLAGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target case_fuzzer cell_fuzzer catalog_fuzzer \
 	  library_fuzzer msh_fuzzer
 	$(SAN_ENV) bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)

@@ -7,7 +7,7 @@
 
 #include "core/toml_reader.hpp"
 #include "fuzz_input.hpp"
-#include "membrane/case_file.hpp"
+#include "membrane/io/case_file.hpp"
 
 namespace {
 bool affordable(const toml::table& doc) {

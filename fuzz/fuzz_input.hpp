@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <system_error>
 
 namespace lamina::fuzz {
 
@@ -22,16 +23,27 @@ inline std::string text(const std::uint8_t* data, std::size_t size) {
   return std::string(reinterpret_cast<const char*>(data), size);
 }
 
-/// Writes @p content to a file named @p name in a folder private to this
-/// process and @return its path (readers that only take paths).
+/// The folder private to this process under the system temporary folder
+/// (TMPDIR) that scratchFile writes into; removed when the fuzzer exits
+/// normally (a crash leaves it for the reproducer's inspection).
+struct ScratchDir {
+  std::filesystem::path path =
+      std::filesystem::temp_directory_path() / ("lamina-fuzz-" + std::to_string(::getpid()));
+  ScratchDir() { std::filesystem::create_directories(path); }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+};
+
+/// Writes @p content to a file named @p name in the process's ScratchDir and
+/// @return its path (readers that only take paths). Nothing is written
+/// anywhere else.
 inline std::filesystem::path scratchFile(const std::string& name, const std::string& content) {
-  static const std::filesystem::path dir = [] {
-    const auto d =
-        std::filesystem::temp_directory_path() / ("lamina-fuzz-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  const auto p = dir / name;
+  static const ScratchDir dir;
+  const auto p = dir.path / name;
   std::ofstream(p, std::ios::binary | std::ios::trunc) << content;
   return p;
 }

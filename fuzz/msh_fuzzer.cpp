@@ -3,7 +3,7 @@
 /// reader, then our checks: z = 0 plane, triangles, regions, node sets).
 
 #include "fuzz_input.hpp"
-#include "membrane/mesh.hpp"
+#include "membrane/model/mesh.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return lamina::fuzz::guarded([&] {

@@ -17,10 +17,12 @@ seed() { # seed TARGET FILES...
   mkdir -p "$dir"
   for f in "$@"; do cp -n "$f" "$dir/$(basename "$f")" 2>/dev/null || true; done
 }
-seed case cases/membrane/*.toml cases/demo/*.toml
-seed cell cases/cells/*.toml
-seed catalog materials/catalog.toml
-seed library fuzz/seeds/library/*.toml
+shopt -s nullglob
+seed case cases/membrane/*.toml cases/demo/*.toml fuzz/seeds/case/*
+seed cell cases/cells/*.toml fuzz/seeds/cell/*
+seed catalog materials/catalog.toml fuzz/seeds/catalog/*
+seed library fuzz/seeds/library/*
+seed msh fuzz/seeds/msh/*
 mkdir -p "$corpus/msh"
 for geo in cases/meshes/*.geo; do # .msh seeds meshed from the .geo files
   out=$corpus/msh/$(basename "${geo%.geo}").msh
@@ -32,9 +34,14 @@ for target in case cell catalog library msh; do
   if ! "$BUILD/fuzz/${target}_fuzzer" "$corpus/$target" -max_total_time="$SECONDS_EACH" \
       -timeout=25 -rss_limit_mb=3072 -max_len=65536 -print_final_stats=1 \
       -artifact_prefix="$artifacts/${target}-" > "$BUILD/fuzz-$target.log" 2>&1; then
-    echo "fuzz: $target FAILED; see $BUILD/fuzz-$target.log and $artifacts/" >&2
+    echo "fuzz: $target FAILED; log $BUILD/fuzz-$target.log" >&2
     tail -40 "$BUILD/fuzz-$target.log" >&2
-    status=1
+    repro=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$BUILD/fuzz-$target.log" | tail -1)
+    if [ -n "$repro" ]; then
+      echo "fuzz: $target reproducer: $repro (rerun: $BUILD/fuzz/${target}_fuzzer $repro)" >&2
+    else
+      echo "fuzz: $target stopped without a reproducer file (see the log)" >&2
+    fi
   else
     grep -E "^stat::number_of_executed_units|^#[0-9]+.*DONE" "$BUILD/fuzz-$target.log" >&2 || true
   fi
