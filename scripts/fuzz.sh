@@ -3,7 +3,7 @@
 # seeded from cases/ (and fuzz/seeds/); the corpus grows in BUILD/corpus and
 # is kept between runs. A crash, an abort, a sanitizer report or a leak
 # stops the script with the reproducer in BUILD/fuzz-artifacts/.
-#   scripts/fuzz.sh [BUILD] [SECONDS]
+#   [FUZZ_TARGETS="case cell ..."] scripts/fuzz.sh [BUILD] [SECONDS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build-fuzz}
@@ -29,11 +29,12 @@ for geo in cases/meshes/*.geo; do # .msh seeds meshed from the .geo files
   [ -f "$out" ] || gmsh -2 -format msh41 "$geo" -o "$out" > /dev/null
 done
 status=0
-for target in case cell catalog library msh; do
+for target in ${FUZZ_TARGETS:-case cell catalog library msh}; do
   echo "fuzz: $target for ${SECONDS_EACH} s" >&2
   if ! "$BUILD/fuzz/${target}_fuzzer" "$corpus/$target" -max_total_time="$SECONDS_EACH" \
       -timeout=25 -rss_limit_mb=3072 -max_len=65536 -print_final_stats=1 \
       -artifact_prefix="$artifacts/${target}-" > "$BUILD/fuzz-$target.log" 2>&1; then
+    status=1
     echo "fuzz: $target FAILED; log $BUILD/fuzz-$target.log" >&2
     tail -40 "$BUILD/fuzz-$target.log" >&2
     repro=$(sed -n 's/.*Test unit written to \(.*\)$/\1/p' "$BUILD/fuzz-$target.log" | tail -1)
