@@ -30,9 +30,8 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
     const bool is_iso =
         (c.matrix() - iso).cwiseAbs().maxCoeff() <= 1e-14 * c.matrix().cwiseAbs().maxCoeff();
     iso_.push_back(is_iso ? 1 : 0);
-    all_iso_ = all_iso_ && is_iso;
-    lame_.push_back(lambda);
-    lame_.push_back(mu);
+    lame_.push_back(is_iso ? lambda : 0.0);
+    lame_.push_back(is_iso ? mu : 0.0);
   }
   for (std::int32_t p : phase_lo_)
     LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C.size(), "phase index ", p,
@@ -40,6 +39,19 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
   for (std::int32_t p : phase_)
     LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C.size(), "phase index ", p,
                  " has no stiffness");
+  // the sparse list of anisotropic voxels per row, halo plane first
+  const std::size_t n1 = static_cast<std::size_t>(grid.n[1]),
+                    n2 = static_cast<std::size_t>(grid.n[2]);
+  const std::size_t rows = (static_cast<std::size_t>(dist.nx()) + 1) * n1;
+  aniso_start_.reserve(rows + 1);
+  for (std::size_t r = 0; r < rows; ++r) {
+    aniso_start_.push_back(aniso_k_.size());
+    const std::int32_t* row = r < n1 ? phase_lo_.data() + r * n2 : phase_.data() + (r - n1) * n2;
+    for (std::size_t k = 0; k < n2; ++k)
+      if (!iso_[static_cast<std::size_t>(row[k])])
+        aniso_k_.push_back(static_cast<std::int32_t>(k));
+  }
+  aniso_start_.push_back(aniso_k_.size());
   // planes_ is sized by apply() for the number of threads it runs with
 }
 
@@ -77,33 +89,16 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
                               scratch + (3 * c + 1) * L, scratch + (3 * c + 2) * L);
     }
     const std::size_t row = static_cast<std::size_t>(j) * n2;
-    if (u && all_iso_) {
+    if (u) {
       isotropicRow(phase + row, E, S + row, acc, energy, scratch);
+      anisotropicVoxels(static_cast<std::size_t>(i + 1) * n1 + j, phase + row, E, S + row, acc,
+                        energy, scratch);
       continue;
     }
-    for (int k = 0; k < n2; ++k) {
-      double e[6] = {E[0], E[1], E[2], E[3], E[4], E[5]}; // lamina order, engineering shear
-      if (u)
-        stencil::strainAt(sums, E, k, e[0], e[1], e[2], e[3], e[4], e[5]);
-      const std::size_t ph = static_cast<std::size_t>(phase[row + k]);
+    for (int k = 0; k < n2; ++k) { // u = 0: the strain is E
+      const double e[6] = {E[0], E[1], E[2], E[3], E[4], E[5]};
       double sv[6];
-      if (iso_[ph]) {
-        const double lambda = lame_[2 * ph], mu = lame_[2 * ph + 1];
-        const double lt = lambda * (e[0] + e[1] + e[2]), m2 = 2 * mu;
-        sv[0] = lt + m2 * e[0];
-        sv[1] = lt + m2 * e[1];
-        sv[2] = lt + m2 * e[2];
-        sv[3] = mu * e[3]; // engineering shear strain
-        sv[4] = mu * e[4];
-        sv[5] = mu * e[5];
-      } else {
-        const double* Cp = &C_[36 * ph];
-        for (int a = 0; a < 6; ++a) {
-          const double* rowC = Cp + 6 * a;
-          sv[a] = rowC[0] * e[0] + rowC[1] * e[1] + rowC[2] * e[2] + rowC[3] * e[3] +
-                  rowC[4] * e[4] + rowC[5] * e[5];
-        }
-      }
+      stress6x6(static_cast<std::size_t>(phase[row + k]), e, sv);
       double w = 0;
       for (int a = 0; a < 6; ++a) {
         S[a * P + row + k] = sv[a];
@@ -117,9 +112,20 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
   }
 }
 
-// The stress row of a cell whose phases are all isotropic, from the column
-// sums in scratch: the phase moduli are gathered into two rows first,
-// so the loop over the voxels has no branch and no indirection and runs in
+// The stress of one voxel of phase ph: the full 6x6 product (lamina order).
+void CellOperator::stress6x6(std::size_t ph, const double e[6], double sv[6]) const {
+  const double* Cp = &C_[36 * ph];
+  for (int a = 0; a < 6; ++a) {
+    const double* rowC = Cp + 6 * a;
+    sv[a] = rowC[0] * e[0] + rowC[1] * e[1] + rowC[2] * e[2] + rowC[3] * e[3] + rowC[4] * e[4] +
+            rowC[5] * e[5];
+  }
+}
+
+// The stress row from the column sums in scratch, as if every phase were
+// isotropic: the phase moduli are gathered into two rows first (zero for an
+// anisotropic phase, whose voxels anisotropicVoxels() sets afterwards), so
+// the loop over the voxels has no branch and no indirection and runs in
 // SIMD lanes (omp simd lets the sums of <sigma> and the energy be reordered).
 void CellOperator::isotropicRow(const std::int32_t* phase, const std::array<double, 6>& E,
                                 double* S, double* acc, double* energy, double* scratch) const {
@@ -170,6 +176,34 @@ void CellOperator::isotropicRow(const std::int32_t* phase, const std::array<doub
     *energy += en;
 }
 
+// The voxels of anisotropic phases in voxel row @p row_index (isotropicRow
+// left them zero stress): strain from the same column sums, the 6x6 product,
+// and their share of <sigma> and of the energy.
+void CellOperator::anisotropicVoxels(std::size_t row_index, const std::int32_t* phase,
+                                     const std::array<double, 6>& E, double* S, double* acc,
+                                     double* energy, const double* scratch) const {
+  const std::size_t begin = aniso_start_[row_index], end = aniso_start_[row_index + 1];
+  if (begin == end)
+    return;
+  const std::size_t P = componentStride();
+  const stencil::RowSums sums(scratch, stencil::rowLength(grid_), grid_);
+  for (std::size_t at = begin; at < end; ++at) {
+    const int k = aniso_k_[at];
+    double e[6], sv[6];
+    stencil::strainAt(sums, E, k, e[0], e[1], e[2], e[3], e[4], e[5]);
+    stress6x6(static_cast<std::size_t>(phase[k]), e, sv);
+    double w = 0;
+    for (int a = 0; a < 6; ++a) {
+      S[a * P + static_cast<std::size_t>(k)] = sv[a];
+      w += sv[a] * e[a];
+      if (acc)
+        acc[a] += sv[a];
+    }
+    if (energy)
+      *energy += w;
+  }
+}
+
 // Nodal forces of node plane i from voxel planes i-1 (prev) and i (cur):
 // f = D^T sigma, i.e. f_c = sum over the 8 voxels around the node of the
 // transposed gradient weights times sigma_cd. A node is corner 1 of the
@@ -180,19 +214,26 @@ void CellOperator::divergencePlane(int i, const double* prev, const double* cur,
                                    double* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t N = dist_.localSize(), P = componentStride();
-  for (int j = 0; j < n1; ++j) {
-    const int jm = (j == 0) ? n1 - 1 : j - 1;
-    const std::size_t rj = static_cast<std::size_t>(j) * n2, rm = static_cast<std::size_t>(jm) * n2;
-    const double *pj[6], *pm[6], *cj[6], *cm[6];
+  const std::size_t block = stencil::kXCombinations * stencil::rowLength(grid_);
+  // the x-combinations of voxel rows j (cj) and j-1 (cm), rolled along y
+  double* cj = scratch;
+  double* cm = scratch + block;
+  auto combine = [&](int j, double* out) {
+    const std::size_t rj = static_cast<std::size_t>(j) * n2;
+    const double *pj[6], *qj[6];
     for (int a = 0; a < 6; ++a) {
       pj[a] = prev + a * P + rj;
-      pm[a] = prev + a * P + rm;
-      cj[a] = cur + a * P + rj;
-      cm[a] = cur + a * P + rm;
+      qj[a] = cur + a * P + rj;
     }
+    stencil::xCombinations(pj, qj, n2, out);
+  };
+  combine(n1 - 1, cm);
+  for (int j = 0; j < n1; ++j) {
+    combine(j, cj);
     const std::size_t row = (static_cast<std::size_t>(i) * n1 + j) * n2;
     double* const fr[3] = {f + row, f + N + row, f + 2 * N + row};
-    stencil::divergenceRow(pj, pm, cj, cm, grid_, scratch, fr);
+    stencil::divergenceFromCombinations(cj, cm, grid_, fr);
+    std::swap(cj, cm);
   }
 }
 
@@ -230,7 +271,7 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
     double acc[6] = {0, 0, 0, 0, 0, 0};
     double my_energy = 0;
     double* en = energy ? &my_energy : nullptr;
-    std::vector<double> scratch(11 * (static_cast<std::size_t>(grid_.n[2]) + 1));
+    std::vector<double> scratch(2 * stencil::kXCombinations * stencil::rowLength(grid_));
 #pragma omp for schedule(dynamic, 1) nowait
     for (int slab = 0; slab < slabs; ++slab) {
       const int begin = static_cast<int>(static_cast<long>(n0) * slab / slabs);

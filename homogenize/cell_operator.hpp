@@ -69,6 +69,10 @@ private:
                    double* energy, double* scratch) const;
   void isotropicRow(const std::int32_t* phase, const std::array<double, 6>& E, double* S,
                     double* acc, double* energy, double* scratch) const;
+  void anisotropicVoxels(std::size_t row_index, const std::int32_t* phase,
+                         const std::array<double, 6>& E, double* S, double* acc, double* energy,
+                         const double* scratch) const;
+  void stress6x6(std::size_t ph, const double e[6], double sv[6]) const;
   void divergencePlane(int i, const double* prev, const double* cur, double* f,
                        double* scratch) const;
 
@@ -79,8 +83,13 @@ private:
   mutable std::vector<double> halo_lo_, halo_hi_; // node planes x0 - 1, x0 + nx of u
   std::vector<double> C_;                         // 36 per phase, row-major, lamina order
   std::vector<char> iso_;                         // per phase: isotropic (use lame_)
-  bool all_iso_ = true;                           // every phase isotropic (isotropicRow)
-  std::vector<double> lame_;                      // per phase: lambda, mu
+  std::vector<double> lame_; // per phase: lambda, mu (0, 0 for an anisotropic phase)
+  // The voxels of anisotropic phases (composite voxels: a few per cent), per
+  // voxel row r = (i + 1) n1 + j of planes i = -1 (halo) .. nx-1: their z
+  // indices aniso_k_[aniso_start_[r] .. aniso_start_[r + 1]). isotropicRow
+  // gives them zero stress; anisotropicVoxels then sets theirs.
+  std::vector<std::size_t> aniso_start_;
+  std::vector<std::int32_t> aniso_k_;
   mutable std::vector<double> planes_; // per thread: two voxel planes of stress (6 per voxel)
 };
 

@@ -37,6 +37,16 @@ std::mutex& plannerMutex() {
   return m;
 }
 
+// The three components in one serial plan (howmany = 3): in place, each a
+// chunk of @p dist complex entries apart, its real rows padded to 2 (n2/2+1).
+struct Batch {
+  Batch(const Grid& g, int dist)
+      : real{g.n[0], g.n[1], 2 * (g.n[2] / 2 + 1)}, modes{g.n[0], g.n[1], g.n[2] / 2 + 1},
+        real_dist(2 * dist) {}
+  int real[3], modes[3]; ///< embedding of the real and the complex arrays
+  int real_dist;         ///< reals between components
+};
+
 // The FFTW calls of one precision behind one name.
 template <class T>
 struct Fftw;
@@ -47,11 +57,15 @@ struct Fftw<double> {
   static void* alloc(std::size_t n) { return fftw_alloc_complex(n); }
   static void free(void* p) { fftw_free(p); }
   static void threads(int n) { fftw_plan_with_nthreads(n); }
-  static Plan r2c(const Grid& g, double* in, Complex* out, unsigned flags) {
-    return fftw_plan_dft_r2c_3d(g.n[0], g.n[1], g.n[2], in, out, flags);
+  static Plan manyR2c(const Grid& g, double* in, Complex* out, int dist, unsigned flags) {
+    const Batch b(g, dist);
+    return fftw_plan_many_dft_r2c(3, g.n.data(), 3, in, b.real, 1, b.real_dist, out, b.modes, 1,
+                                  dist, flags);
   }
-  static Plan c2r(const Grid& g, Complex* in, double* out, unsigned flags) {
-    return fftw_plan_dft_c2r_3d(g.n[0], g.n[1], g.n[2], in, out, flags);
+  static Plan manyC2r(const Grid& g, Complex* in, double* out, int dist, unsigned flags) {
+    const Batch b(g, dist);
+    return fftw_plan_many_dft_c2r(3, g.n.data(), 3, in, b.modes, 1, dist, out, b.real, 1,
+                                  b.real_dist, flags);
   }
 #ifdef LAMINA_WITH_MPI
   static Plan mpiR2c(const Grid& g, double* in, Complex* out, unsigned flags) {
@@ -103,11 +117,15 @@ struct Fftw<float> {
   static void* alloc(std::size_t n) { return fftwf_alloc_complex(n); }
   static void free(void* p) { fftwf_free(p); }
   static void threads(int n) { fftwf_plan_with_nthreads(n); }
-  static Plan r2c(const Grid& g, float* in, Complex* out, unsigned flags) {
-    return fftwf_plan_dft_r2c_3d(g.n[0], g.n[1], g.n[2], in, out, flags);
+  static Plan manyR2c(const Grid& g, float* in, Complex* out, int dist, unsigned flags) {
+    const Batch b(g, dist);
+    return fftwf_plan_many_dft_r2c(3, g.n.data(), 3, in, b.real, 1, b.real_dist, out, b.modes, 1,
+                                   dist, flags);
   }
-  static Plan c2r(const Grid& g, Complex* in, float* out, unsigned flags) {
-    return fftwf_plan_dft_c2r_3d(g.n[0], g.n[1], g.n[2], in, out, flags);
+  static Plan manyC2r(const Grid& g, Complex* in, float* out, int dist, unsigned flags) {
+    const Batch b(g, dist);
+    return fftwf_plan_many_dft_c2r(3, g.n.data(), 3, in, b.modes, 1, dist, out, b.real, 1,
+                                   b.real_dist, flags);
   }
 #ifdef LAMINA_WITH_MPI
   static Plan mpiR2c(const Grid& g, float* in, Complex* out, unsigned flags) {
@@ -207,6 +225,7 @@ struct PlansOf : VectorFft::Plans {
   using F = Fftw<T>;
   typename F::Plan r2c = nullptr, c2r = nullptr;
   bool mpi = false;
+  bool batched = false; // serial: one plan for the three components
   ~PlansOf() override {
     if (r2c)
       F::destroy(r2c);
@@ -220,6 +239,10 @@ struct PlansOf : VectorFft::Plans {
     return static_cast<typename F::Complex*>(buffer) + c * chunk;
   }
   void forward(void* buffer, std::size_t chunk) override {
+    if (batched) {
+      F::serialR2c(r2c, real(buffer, chunk, 0), modes(buffer, chunk, 0));
+      return;
+    }
     for (int c = 0; c < 3; ++c) {
 #ifdef LAMINA_WITH_MPI
       if (mpi) {
@@ -231,6 +254,10 @@ struct PlansOf : VectorFft::Plans {
     }
   }
   void backward(void* buffer, std::size_t chunk) override {
+    if (batched) {
+      F::serialC2r(c2r, modes(buffer, chunk, 0), real(buffer, chunk, 0));
+      return;
+    }
     for (int c = 0; c < 3; ++c) {
 #ifdef LAMINA_WITH_MPI
       if (mpi) {
@@ -284,8 +311,10 @@ std::unique_ptr<VectorFft::Plans> makePlans(const Grid& grid, const Distribution
 #endif
   } else {
     importWisdom<T>(wisdom);
-    plans->r2c = F::r2c(grid, in, out, flags);
-    plans->c2r = F::c2r(grid, out, in, flags);
+    plans->batched = true;
+    const int dist_c = static_cast<int>(chunk);
+    plans->r2c = F::manyR2c(grid, in, out, dist_c, flags);
+    plans->c2r = F::manyC2r(grid, out, in, dist_c, flags);
     if (measure)
       exportWisdom<T>(wisdom);
   }
@@ -358,8 +387,7 @@ void VectorFft::forward(const double* r) {
   plans_->forward(buffer_, chunk_);
 }
 
-void VectorFft::forwardUpdate(double* r, double alpha, const double* w, double* x,
-                              const double* p) {
+void VectorFft::forwardUpdate(double* r, double alpha, const double* w) {
   const int n2 = grid_.n[2];
   eachRow([&](auto* dst, std::size_t off) {
     using T = std::remove_pointer_t<decltype(dst)>;
@@ -369,12 +397,6 @@ void VectorFft::forwardUpdate(double* r, double alpha, const double* w, double* 
       const double v = ro[k] - alpha * wo[k];
       ro[k] = v;
       dst[k] = static_cast<T>(v);
-    }
-    if (x) {
-      double* xo = x + off;
-      const double* po = p + off;
-      for (int k = 0; k < n2; ++k)
-        xo[k] += alpha * po[k];
     }
   });
   plans_->forward(buffer_, chunk_);
@@ -389,11 +411,20 @@ void VectorFft::backward(double* z) {
   });
 }
 
-void VectorFft::backwardUpdate(double* p, double beta) {
+void VectorFft::backwardUpdate(double* p, double beta, double* x, double alpha) {
   const int n2 = grid_.n[2];
   plans_->backward(buffer_, chunk_);
   eachRow([&](auto* src, std::size_t off) {
     double* po = p + off;
+    if (x) { // x += alpha p with the old p, read here anyway
+      double* xo = x + off;
+      for (int k = 0; k < n2; ++k) {
+        const double pk = po[k];
+        xo[k] += alpha * pk;
+        po[k] = static_cast<double>(src[k]) + beta * pk;
+      }
+      return;
+    }
     for (int k = 0; k < n2; ++k)
       po[k] = static_cast<double>(src[k]) + beta * po[k];
   });

@@ -54,12 +54,13 @@ public:
   /// Transforms the spectrum back (destroying it) and stores it into @p z
   /// (same layout as forward's input).
   void backward(double* z);
-  /// The conjugate-gradient update r -= alpha w (and x += alpha p when @p x
-  /// is not null) fused with forward(r): one pass over the fields.
-  void forwardUpdate(double* r, double alpha, const double* w, double* x, const double* p);
-  /// backward() fused with the conjugate-gradient direction update
-  /// p = z + beta p (z is never stored).
-  void backwardUpdate(double* p, double beta);
+  /// The conjugate-gradient update r -= alpha w fused with forward(r): one
+  /// pass over the fields.
+  void forwardUpdate(double* r, double alpha, const double* w);
+  /// backward() fused with the conjugate-gradient updates x += alpha p (when
+  /// @p x is not null; the old p) and p = z + beta p (z is never stored):
+  /// one pass that reads p once for both.
+  void backwardUpdate(double* p, double beta, double* x = nullptr, double alpha = 0);
 
   /// @return the precision
   Precision precision() const { return precision_; }

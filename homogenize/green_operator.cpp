@@ -88,11 +88,11 @@ double GreenOperator::apply(const double* r, double* z) const {
 
 double GreenOperator::step(double* r, double alpha, const double* w, double* x, double* p,
                            double rz) const {
-  fft_.forwardUpdate(r, alpha, w, x, p);
+  fft_.forwardUpdate(r, alpha, w);
   double rz_new =
       fft_.precision() == Precision::Single ? solveModes<float>() : solveModes<double>();
   dist_.sum(&rz_new, 1);
-  fft_.backwardUpdate(p, rz_new / rz);
+  fft_.backwardUpdate(p, rz_new / rz, x, alpha);
   return rz_new;
 }
 

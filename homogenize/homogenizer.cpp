@@ -11,9 +11,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <sstream>
@@ -95,11 +92,8 @@ public:
       }
       double pw = 0;
       std::array<double, 6> sigma_p{};
-      auto t0 = Clock::now();
       // w = A p; pw = p^T A p and <C D p> from the stress pass
       A_.apply(p, zero, w, &sigma_p, &pw);
-      auto t1 = Clock::now();
-      time_A += std::chrono::duration<double>(t1 - t0).count();
       const double alpha = rz / pw;
       if (!std::isfinite(alpha) || !(pw > 0))
         throw DivergenceError("conjugate gradients broke down (p^T A p = " + std::to_string(pw) +
@@ -108,7 +102,6 @@ public:
         sigma[a] += alpha * sigma_p[a];
       // r -= alpha w, x += alpha p, z = M r, p = z + beta p: fused passes
       const double rz_new = M_.step(r, alpha, w, x, p, rz);
-      time_M += std::chrono::duration<double>(Clock::now() - t1).count();
       if (!std::isfinite(rz_new))
         throw DivergenceError("residual is NaN/Inf in conjugate gradients");
       rz = rz_new;
@@ -142,12 +135,7 @@ public:
     dist_.sum(dots, count);
   }
 
-  /// Seconds spent in the operator and in the preconditioner with the
-  /// vector updates fused into its passes.
-  double time_A = 0, time_M = 0;
-
 private:
-  using Clock = std::chrono::steady_clock;
   std::size_t n_;
   const CellOperator& A_;
   const GreenOperator& M_;
@@ -224,8 +212,6 @@ Result Homogenizer::run() {
   std::vector<AlignedBuffer> x;
   for (int k = 0; k < (energy_form ? 6 : sink_ ? 1 : 0); ++k)
     x.emplace_back(3 * dist_.localSize());
-  const double setup_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // solve: six unit strains (lamina order, engineering shear) -> six columns
   core::ProgressLine progress("homogenize", 6, opt_.quiet);
@@ -263,11 +249,6 @@ Result Homogenizer::run() {
       sink_(k, x[energy_form ? static_cast<std::size_t>(k) : 0].data());
   }
   progress.finish();
-  if (std::getenv("LAMINA_HOMOGENIZE_PROFILE") && dist_.rank() == 0)
-    std::fprintf(stderr,
-                 "homogenize profile: setup %.3f s, operator %.3f s, preconditioner and vector "
-                 "updates %.3f s\n",
-                 setup_s, cg.time_A, cg.time_M);
 
   // output: raw and symmetrized C, diagnostics
   res.C_raw = materials::Stiffness(C);

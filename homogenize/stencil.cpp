@@ -65,4 +65,50 @@ void divergenceRow(const double* const prev_j[6], const double* const prev_m[6],
   }
 }
 
+void xCombinations(const double* const prev[6], const double* const cur[6], int n2, double* out) {
+  const std::size_t L = static_cast<std::size_t>(n2) + 1;
+  double *D0 = out + 1, *D3 = out + L + 1, *D5 = out + 2 * L + 1;             // prev - cur
+  double *S3 = out + 3 * L + 1, *S1 = out + 4 * L + 1, *S4 = out + 5 * L + 1; // prev + cur
+  double *S5 = out + 6 * L + 1, *S2 = out + 7 * L + 1;
+  const double *p0 = prev[0], *p1 = prev[1], *p2 = prev[2], *p3 = prev[3], *p4 = prev[4],
+               *p5 = prev[5];
+  const double *c0 = cur[0], *c1 = cur[1], *c2 = cur[2], *c3 = cur[3], *c4 = cur[4], *c5 = cur[5];
+  for (int k = 0; k < n2; ++k) {
+    D0[k] = p0[k] - c0[k];
+    D3[k] = p3[k] - c3[k];
+    D5[k] = p5[k] - c5[k];
+    S3[k] = p3[k] + c3[k];
+    S1[k] = p1[k] + c1[k];
+    S4[k] = p4[k] + c4[k];
+    S5[k] = p5[k] + c5[k];
+    S2[k] = p2[k] + c2[k];
+  }
+  for (int s = 0; s < kXCombinations; ++s)
+    out[static_cast<std::size_t>(s) * L] = out[static_cast<std::size_t>(s) * L + n2];
+}
+
+void divergenceFromCombinations(const double* cj, const double* cm, const Grid& grid,
+                                double* const f[3]) {
+  const int n2 = grid.n[2];
+  const double cx = 0.25 / grid.h[0], cy = 0.25 / grid.h[1], cz = 0.25 / grid.h[2];
+  const std::size_t L = static_cast<std::size_t>(n2) + 1;
+  const double *D0j = cj, *D3j = cj + L, *D5j = cj + 2 * L, *S3j = cj + 3 * L, *S1j = cj + 4 * L,
+               *S4j = cj + 5 * L, *S5j = cj + 6 * L, *S2j = cj + 7 * L;
+  const double *D0m = cm, *D3m = cm + L, *D5m = cm + 2 * L, *S3m = cm + 3 * L, *S1m = cm + 4 * L,
+               *S4m = cm + 5 * L, *S5m = cm + 6 * L, *S2m = cm + 7 * L;
+  double *fx = f[0], *fy = f[1], *fz = f[2];
+  // the sums of divergenceRow (X across y: rows j + m; Y: m - j; Z: j + m),
+  // voxel k at index k+1, voxel k-1 at index k
+  auto X = [](const double* a, const double* b, int i) { return a[i] + b[i]; };
+  auto Y = [](const double* a, const double* b, int i) { return b[i] - a[i]; };
+  for (int k = 0; k < n2; ++k) {
+    fx[k] = cx * (X(D0j, D0m, k + 1) + X(D0j, D0m, k)) +
+            cy * (Y(S3j, S3m, k + 1) + Y(S3j, S3m, k)) + cz * (X(S5j, S5m, k) - X(S5j, S5m, k + 1));
+    fy[k] = cx * (X(D3j, D3m, k + 1) + X(D3j, D3m, k)) +
+            cy * (Y(S1j, S1m, k + 1) + Y(S1j, S1m, k)) + cz * (X(S4j, S4m, k) - X(S4j, S4m, k + 1));
+    fz[k] = cx * (X(D5j, D5m, k + 1) + X(D5j, D5m, k)) +
+            cy * (Y(S4j, S4m, k + 1) + Y(S4j, S4m, k)) + cz * (X(S2j, S2m, k) - X(S2j, S2m, k + 1));
+  }
+}
+
 } // namespace lamina::homogenize::stencil

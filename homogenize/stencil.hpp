@@ -76,4 +76,23 @@ void divergenceRow(const double* const prev_j[6], const double* const prev_m[6],
                    const double* const cur_j[6], const double* const cur_m[6], const Grid& grid,
                    double* scratch, double* const f[3]);
 
+/// Rows of x-combinations per voxel row (xCombinations).
+inline constexpr int kXCombinations = 8;
+
+/// The combinations across x of the stresses of one voxel row that the
+/// divergence of the node rows next to it takes: prev - cur of sigma_xx,
+/// xy, xz and prev + cur of sigma_xy, yy, yz, xz, zz, in rows of L =
+/// rowLength entries where index k+1 holds voxel k and index 0 voxel n2-1
+/// (periodic). Each voxel row serves two node rows (j and j+1), so forming
+/// them once halves the reads of the stress planes.
+/// @param prev, cur the voxel row (j) of the planes below and above the node plane
+/// @param out kXCombinations rows of L entries
+void xCombinations(const double* const prev[6], const double* const cur[6], int n2, double* out);
+
+/// Nodal forces of a node row, f = D^T sigma, from the x-combinations of
+/// voxel rows j (@p cj) and j-1 (@p cm): the same sums as divergenceRow.
+/// @param f the three force rows (x, y, z components), n2 each
+void divergenceFromCombinations(const double* cj, const double* cm, const Grid& grid,
+                                double* const f[3]);
+
 } // namespace lamina::homogenize::stencil
