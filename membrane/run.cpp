@@ -149,7 +149,8 @@ private:
     energy_ = table("energy.csv",
                     "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance,"
                     "micro_kinetic" +
-                        std::string(extra_energy_ ? ",spring_work,damping_work" : ""),
+                        std::string(extra_energy_ ? ",spring_work,damping_work" : "") +
+                        std::string(sim.structure().hasPotential() ? "" : ",wrinkling_dissipation"),
                     1);
     const auto names = sim.reactionNames();
     if (!names.empty()) {
@@ -177,10 +178,10 @@ private:
     h["run/probe_peak"] = Eigen::Map<const Eigen::VectorXd>(
         probe_peak_.data(), static_cast<Eigen::Index>(probe_peak_.size()));
     const auto& e = last_energy_;
-    h["run/last_energy"] =
-        (Eigen::VectorXd(9) << e.kinetic, e.micro_kinetic, e.strain, e.external_work,
-         e.reaction_work, e.drag_work, e.spring_work, e.damping_work, e.balance)
-            .finished();
+    h["run/last_energy"] = (Eigen::VectorXd(10) << e.kinetic, e.micro_kinetic, e.strain,
+                            e.external_work, e.reaction_work, e.drag_work, e.spring_work,
+                            e.damping_work, e.balance, e.wrinkling_dissipation)
+                               .finished();
     h["run/csv_bytes"] = Eigen::Vector3d(static_cast<double>(probes_->bytes()),
                                          static_cast<double>(energy_->bytes()),
                                          reactions_ ? static_cast<double>(reactions_->bytes()) : 0);
@@ -227,8 +228,8 @@ private:
       const auto np = static_cast<Eigen::Index>(model_.probes.size());
       const Eigen::VectorXd& pp = historyEntry(h, "run/probe_peak", np);
       probe_peak_.assign(pp.data(), pp.data() + np);
-      const Eigen::VectorXd& e = historyEntry(h, "run/last_energy", 9);
-      last_energy_ = Energy{e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8]};
+      const Eigen::VectorXd& e = historyEntry(h, "run/last_energy", 10);
+      last_energy_ = Energy{e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9]};
     } catch (const Error& e) {
       throw Error("checkpoint does not fit this run: " + e.message(), where);
     }
@@ -298,8 +299,11 @@ private:
         row.push_back(e.spring_work);
         row.push_back(e.damping_work);
       }
+      if (!sim.structure().hasPotential())
+        row.push_back(e.wrinkling_dissipation);
       energy_->row(row);
-      energy_scale_ = std::max({energy_scale_, std::abs(e.spring_work), std::abs(e.damping_work)});
+      energy_scale_ = std::max({energy_scale_, std::abs(e.spring_work), std::abs(e.damping_work),
+                                std::abs(e.wrinkling_dissipation)});
     }
     if (fields && fields_)
       writeFields(sim);
@@ -336,6 +340,8 @@ private:
                    {"damping_work", e.damping_work},
                    {"max_abs_balance", max_balance_},
                    {"relative_balance", energy_scale_ > 0 ? max_balance_ / energy_scale_ : 0.0}};
+    if (!sim.structure().hasPotential())
+      s["energy"]["wrinkling_dissipation"] = e.wrinkling_dissipation;
     nlohmann::json probes = nlohmann::json::object();
     for (size_t k = 0; k < model_.probes.size(); ++k) {
       const auto& p = model_.probes[k];

@@ -150,10 +150,11 @@ Energy Simulation::energy() const {
   Eigen::VectorXd y;
   multiply(structure_->mass(), state_.v, y);
   const double T = 0.5 * state_.v.dot(y);
-  // Without a potential (tension-only fabric) U is the internal work done since t = 0.
-  const double U =
-      structure_->hasPotential() ? structure_->strainEnergy(state_.u) : u0_ + works_.internal;
-  Energy e = works_.energy(T, U, e0_);
+  // U is the stored energy; without a potential (tension-only fabric) the
+  // internal work it does not hold is the wrinkling dissipation.
+  const double U = structure_->strainEnergy(state_.u);
+  const double D = structure_->hasPotential() ? 0.0 : works_.internal - (U - u0_);
+  Energy e = works_.energy(T, U, e0_, D);
   if (const SparseMatrix* MD = structure_->microMass()) {
     multiply(*MD, state_.v, y);
     e.micro_kinetic = 0.5 * state_.v.dot(y);

@@ -20,7 +20,7 @@ void Works::add(const Eigen::VectorXd& du, const StateForces& f0, const StateFor
   }
 }
 
-Energy Works::energy(double T, double U, double e0) const {
+Energy Works::energy(double T, double U, double e0, double D) const {
   Energy e;
   e.kinetic = T;
   e.strain = U;
@@ -29,7 +29,8 @@ Energy Works::energy(double T, double U, double e0) const {
   e.drag_work = drag;
   e.spring_work = spring;
   e.damping_work = damping;
-  e.balance = T + U - e0 - external - reaction - drag - spring - damping;
+  e.wrinkling_dissipation = D;
+  e.balance = T + U + D - e0 - external - reaction - drag - spring - damping;
   return e;
 }
 

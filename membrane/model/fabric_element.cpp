@@ -93,6 +93,11 @@ Eigen::Matrix3d fabricForces(const FabricElement& el, const FabricStress& st, do
   return f;
 }
 
+double fabricStoredEnergy(const FabricStress& st, const Eigen::Matrix3d& Cinv,
+                          const Eigen::Vector3d& S0) {
+  return 0.5 * (st.S.dot(Cinv * st.S) - S0.dot(Cinv * S0));
+}
+
 Eigen::Vector2d principalCauchy(const FabricStress& st) {
   Eigen::Matrix2d S;
   S << st.S[0], st.S[2], st.S[2], st.S[1];

@@ -11,7 +11,9 @@
 /// Green-Lagrange strain E = (F^T F - I) / 2, in Voigt form
 /// [E11, E22, 2 E12] (engineering shear), the second Piola-Kirchhoff stress
 /// S = C_ps E + S0 (S0 the pre-stress), and the nodal internal force
-/// f_a = h A0 F S dN_a. Strain energy h A0 (E.C_ps E / 2 + S0.E).
+/// f_a = h A0 F S dN_a. Strain energy h A0 (E.C_ps E / 2 + S0.E); for a
+/// tension-only element the stored energy of its stress,
+/// h A0 (S.C_ps^-1 S - S0.C_ps^-1 S0) / 2 (fabricStoredEnergy()).
 ///
 /// Plane-stress stiffness: with p = {xx, yy, xy} and z = {zz} (lamina
 /// order), C_ps = C_pp - C_pz C_zz^-1 C_zp (sigma_zz = 0 condensed out; the
@@ -68,6 +70,15 @@ FabricStress fabricStress(const FabricElement& el, const std::array<Eigen::Vecto
 
 /// @return the nodal internal forces (3 x 3, column a = node a) of @p st for thickness @p h.
 Eigen::Matrix3d fabricForces(const FabricElement& el, const FabricStress& st, double h);
+
+/// @return the energy per unit reference volume stored in the stress of @p st (J/m^3),
+/// relative to the pre-stressed reference: (S.C_ps^-1 S - S0.C_ps^-1 S0) / 2 with
+/// @p Cinv = C_ps^-1. The elastic strain C_ps^-1 S carries the stress; the rest of
+/// E (the wrinkling strain of a tension-only element) is stress-free and stores
+/// nothing. Equals E.C_ps E / 2 + S0.E for a taut element; >= 0 without pre-stress.
+/// A state function: the work of the tension-only law is not (docs/membrane.md).
+double fabricStoredEnergy(const FabricStress& st, const Eigen::Matrix3d& Cinv,
+                          const Eigen::Vector3d& S0);
 
 /// @return the principal values (major first) of the symmetric 2x2 [a, c; c, b]
 Eigen::Vector2d principal2(double a, double b, double c);

@@ -19,6 +19,7 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
   const int ne = mesh.numElements(), n = mesh.numNodes();
   for (const auto& s : model.sections) {
     cps_.push_back(planeStressStiffness(s.D));
+    cps_inv_.push_back(cps_.back().inverse());
     s0_.push_back(s.prestress / s.thickness);
     any_tension_only_ = any_tension_only_ || s.tension_only;
     any_threshold_ =
@@ -148,8 +149,10 @@ double LargeDeflection::strainEnergy(const Eigen::VectorXd& u) const {
   for (int e = 0; e < ne; ++e) {
     const int r = model_.mesh.region_of[e];
     const FabricStress st = stress(e, u);
-    U += model_.sections[r].thickness * elements_[e].area0 *
-         (0.5 * st.E.dot(cps_[r] * st.E) + s0_[r].dot(st.E));
+    const double w = model_.sections[r].tension_only
+                         ? fabricStoredEnergy(st, cps_inv_[r], s0_[r])
+                         : 0.5 * st.E.dot(cps_[r] * st.E) + s0_[r].dot(st.E);
+    U += model_.sections[r].thickness * elements_[e].area0 * w;
   }
   return U;
 }

@@ -23,7 +23,9 @@ public:
   int numDofs() const override { return 3 * model_.mesh.numNodes(); }
   const SparseMatrix& mass() const override { return M_; }
   void internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
-  /// @return sum of h A0 (E.C_ps E / 2 + S0.E) (a potential unless a region is tension-only)
+  /// @return sum of h A0 (E.C_ps E / 2 + S0.E); in a tension-only region the
+  /// stored energy h A0 (S.C_ps^-1 S - S0.C_ps^-1 S0) / 2 of fabricStoredEnergy()
+  /// (a state function, but not a potential of the tension-only force)
   double strainEnergy(const Eigen::VectorXd& u) const override;
   bool hasPotential() const override { return !any_tension_only_; }
   double stableStep() const override;
@@ -46,11 +48,12 @@ public:
 private:
   const Model& model_;
   std::vector<FabricElement> elements_;
-  std::vector<Eigen::Matrix3d> cps_; // per region
-  std::vector<Eigen::Vector3d> s0_;  // pre-stress per region (Pa)
-  std::vector<int> node_start_;      // node -> (element, corner) list, CSR
-  std::vector<int> node_entry_;      // 3 * element + corner
-  mutable std::vector<double> fe_;   // element forces, 9 per element (scratch)
+  std::vector<Eigen::Matrix3d> cps_;     // per region
+  std::vector<Eigen::Matrix3d> cps_inv_; // C_ps^-1 per region (1/Pa)
+  std::vector<Eigen::Vector3d> s0_;      // pre-stress per region (Pa)
+  std::vector<int> node_start_;          // node -> (element, corner) list, CSR
+  std::vector<int> node_entry_;          // 3 * element + corner
+  mutable std::vector<double> fe_;       // element forces, 9 per element (scratch)
   /// What the internal-force loop reads per element, packed in one line of
   /// memory (72 bytes instead of the 160 of FabricElement plus the section).
   struct Packed {
