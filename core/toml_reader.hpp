@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <set>
@@ -98,20 +99,13 @@ public:
   template <class E>
   E getChoice(std::string_view key, std::initializer_list<std::pair<std::string_view, E>> choices,
               E fallback) const {
-    if (!has(key))
-      return fallback;
-    const std::string v = getString(key);
-    std::string names;
-    std::size_t k = 0;
-    for (const auto& [name, value] : choices) {
-      if (name == v)
-        return value;
-      if (k > 0)
-        names += k + 1 == choices.size() ? " or " : ", ";
-      names += "\"" + std::string(name) + "\"";
-      ++k;
-    }
-    fail(key, "unknown value \"" + v + "\" (expected " + names + ")");
+    return getChoiceFrom(key, choices, fallback);
+  }
+  /// getChoice() with a name table kept by the enum's owner (a container of
+  /// (name, value) pairs, e.g. the std::array that a CLI parser shares).
+  template <class E, class Choices>
+  E getChoice(std::string_view key, const Choices& choices, E fallback) const {
+    return getChoiceFrom(key, choices, fallback);
   }
   /// Required array of finite numbers.
   std::vector<double> getDoubleArray(std::string_view key) const;
@@ -148,6 +142,24 @@ public:
   const toml::table& tomlTable() const { return *table_; }
 
 private:
+  /// getChoice()'s lookup over any container of (name, value) pairs.
+  template <class E, class Choices>
+  E getChoiceFrom(std::string_view key, const Choices& choices, E fallback) const {
+    if (!has(key))
+      return fallback;
+    const std::string v = getString(key);
+    std::string names;
+    std::size_t k = 0;
+    for (const auto& [name, value] : choices) {
+      if (name == v)
+        return value;
+      if (k > 0)
+        names += k + 1 == std::size(choices) ? " or " : ", ";
+      names += "\"" + std::string(name) + "\"";
+      ++k;
+    }
+    fail(key, "unknown value \"" + v + "\" (expected " + names + ")");
+  }
   struct Record {
     std::set<std::string> read;  // dotted paths read
     std::set<std::string> whole; // dotted paths accepted with their subtree

@@ -730,9 +730,7 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
     if (pos.size() != 3)
       r.fail("position", "expected [x, y, z] (m)");
     c.position = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-    c.burst = r.getChoice(
-        "burst", {{"hemispherical", Burst::Hemispherical}, {"spherical", Burst::Spherical}},
-        Burst::Hemispherical);
+    c.burst = r.getChoice("burst", burstChoices(), Burst::Hemispherical);
     c.policy =
         r.getChoice("out_of_range", {{"refuse", OutOfRange::Refuse}, {"clamp", OutOfRange::Clamp}},
                     OutOfRange::Refuse);

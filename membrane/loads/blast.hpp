@@ -22,7 +22,10 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 namespace lamina::membrane {
@@ -33,10 +36,14 @@ enum class Burst {
   Spherical,     ///< spherical charge in free air, far from any surface
 };
 
-/// Parses "hemispherical" or "spherical"; otherwise an Error naming @p where.
+/// The burst names of case files (blast.burst) and of the CLI (--burst), the
+/// one table both read: "hemispherical", "spherical".
+const std::array<std::pair<std::string_view, Burst>, 2>& burstChoices();
+
+/// Parses a name of burstChoices(); otherwise an Error naming @p where.
 Burst parseBurst(const std::string& name, const ErrorContext& where = {});
 
-/// @return "hemispherical" or "spherical"
+/// @return the name of @p burst in burstChoices()
 const char* burstName(Burst burst);
 
 /// Scaled-distance interval Z = R / W^(1/3) (m/kg^(1/3)) in which all six
