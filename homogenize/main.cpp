@@ -14,16 +14,21 @@
 #include "homogenize/library_entry.hpp"
 #include "homogenize/nonlinear_run.hpp"
 #include "materials/library.hpp"
+#include "materials/point_driver.hpp"
 #include "micro/cell.hpp"
 #include "micro/unit_cell.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -76,72 +81,304 @@ void printHuman(const lamina::homogenize::EntryResult& e, const lamina::micro::U
   std::printf("added '%s' to %s\n", name.c_str(), library.c_str());
 }
 
+/// A choice of the command line: its names (in --help's and the error's
+/// order) and the value each one stands for. Parsed once, after CLI11's check.
+template <class E, std::size_t N>
+using Choices = std::array<std::pair<const char*, E>, N>;
+
+/// @return the names of @p choices, for CLI::IsMember
+template <class E, std::size_t N>
+std::vector<std::string> namesOf(const Choices<E, N>& choices) {
+  std::vector<std::string> names;
+  for (const auto& c : choices)
+    names.emplace_back(c.first);
+  return names;
+}
+
+/// @return the value of @p name (already checked by CLI::IsMember against namesOf(@p choices))
+template <class E, std::size_t N>
+E valueOf(const Choices<E, N>& choices, const std::string& name) {
+  for (const auto& c : choices)
+    if (name == c.first)
+      return c.second;
+  LAMINA_CHECK(false, "'", name, "' is not a choice of the command line");
+  return choices[0].second;
+}
+
+/// --fftw-plan: FFTW planning.
+enum class FftwPlan { Auto, Estimate, Measure };
+constexpr Choices<FftwPlan, 3> kPlans{
+    {{"auto", FftwPlan::Auto}, {"estimate", FftwPlan::Estimate}, {"measure", FftwPlan::Measure}}};
+
+/// --precision: FFT precision of the preconditioner (Auto: from --tol).
+enum class PrecisionChoice { Auto, Single, Double };
+constexpr Choices<PrecisionChoice, 3> kPrecisions{{{"auto", PrecisionChoice::Auto},
+                                                   {"single", PrecisionChoice::Single},
+                                                   {"double", PrecisionChoice::Double}}};
+
+/// --estimate: how C is formed from the six solutions.
+constexpr Choices<lamina::homogenize::Estimate, 2> kEstimates{
+    {{"energy", lamina::homogenize::Estimate::Energy},
+     {"stress", lamina::homogenize::Estimate::Stress}}};
+
+/// @return the `measure` of homogenize::Options: 1 yes, 0 no, -1 auto
+int measureFlag(FftwPlan plan) {
+  return plan == FftwPlan::Auto ? -1 : plan == FftwPlan::Measure ? 1 : 0;
+}
+
+/// The command line, parsed: the choices as enums.
+struct Cli {
+  std::string cell_path, name, library, catalog, out;
+  bool json = false, overwrite = false, quiet = false;
+  int threads = 0, resolution = 0;
+  double tol = 1e-5, eta = 0.1;
+  FftwPlan plan = FftwPlan::Auto;
+  lamina::homogenize::Estimate estimate = lamina::homogenize::Estimate::Energy;
+  PrecisionChoice precision = PrecisionChoice::Auto;
+  bool path_given = false; ///< --path was on the command line
+  lamina::homogenize::PathSpec path;
+  lamina::homogenize::TangentSpec tangent;
+  std::vector<int> field_steps;
+
+  /// @return true for a nonlinear run (a strain path or rate-dependent tangents)
+  bool nonlinear() const { return path_given || !tangent.rates.empty(); }
+  /// @return true when the preconditioner's FFTs run in single precision
+  bool single() const {
+    return precision == PrecisionChoice::Single ||
+           (precision == PrecisionChoice::Auto &&
+            lamina::homogenize::autoPrecision(tol) == lamina::homogenize::Precision::Single);
+  }
+};
+
+/// The strings CLI11 fills in; turned into the enums of Cli once, after parsing.
+struct CliNames {
+  std::string plan = "auto", estimate = "energy", precision = "auto", path;
+};
+
+/// Declares every option of the program on @p app, into @p cli and @p names.
+void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
+  app.add_option("cell", cli.cell_path, "cell file (TOML)")->required();
+  app.add_option(
+      "--name", cli.name,
+      "library entry name (with a J sweep: NAME-J<J>; with --tangent-rates: NAME-R<rate>)");
+  app.add_option("--library", cli.library, "library file (default: $LAMINA_LIBRARY, XDG data dir)");
+  app.add_flag("--json", cli.json, "print a JSON summary on stdout (one object per entry)");
+  app.add_option("--threads", cli.threads, "OpenMP and FFTW threads")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--tol", cli.tol, "relative residual per load case")->check(CLI::PositiveNumber);
+  app.add_option("--resolution", cli.resolution, "override the resolution: N^3 voxels")
+      ->check(CLI::Range(2, 4096));
+  app.add_option("--catalog", cli.catalog, "catalog file (default: $LAMINA_CATALOG or built-in)");
+  app.add_flag("--overwrite", cli.overwrite, "replace an existing entry of the same name");
+  app.add_option("--fftw-plan", names.plan,
+                 "FFTW planning: estimate, measure (wisdom cached in ~/.cache/lamina), "
+                 "auto (measure above 64^3)")
+      ->check(CLI::IsMember(namesOf(kPlans)));
+  app.add_option("--estimate", names.estimate,
+                 "C from the six solutions: energy (<eps_j:C:eps_k>, error quadratic in the "
+                 "residual, keeps 6 displacement fields) or stress (<sigma_k>, least memory)")
+      ->check(CLI::IsMember(namesOf(kEstimates)));
+  app.add_option("--precision", names.precision,
+                 "FFT precision of the preconditioner: auto (single when tol >= 1e-6), single, "
+                 "double")
+      ->check(CLI::IsMember(namesOf(kPrecisions)));
+  app.add_flag("--quiet", cli.quiet, "no progress line");
+  // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
+  app.add_option("--path", names.path,
+                 "nonlinear run: uniaxial-strain | shear | confined | uniaxial-stress")
+      ->check(CLI::IsMember(lamina::materials::drivePathNames()));
+  app.add_option("--rate", cli.path.rate, "nonlinear: driven strain rate (1/s)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--to", cli.path.to, "nonlinear: final driven strain")->check(CLI::PositiveNumber);
+  app.add_option("--steps", cli.path.steps, "nonlinear: load steps per leg (default 100)")
+      ->check(CLI::Range(1, 10000000));
+  app.add_flag("--unload", cli.path.unload, "nonlinear: back to zero strain at the same rate");
+  app.add_option("--out", cli.out, "nonlinear: history CSV (also OUT-phases.csv, OUT-fields.h5)");
+  app.add_option("--fields", cli.field_steps, "nonlinear: steps whose fields are written (XDMF)")
+      ->delimiter(',');
+  app.add_option("--eta", cli.eta, "nonlinear: CG forcing term per Newton step (default 0.1)")
+      ->check(CLI::Range(1e-12, 0.9));
+  app.add_option("--tangent-rates", cli.tangent.rates,
+                 "rates (1/s, inf allowed) of effective tangent entries NAME-R<rate>")
+      ->delimiter(',');
+  app.add_option("--tangent-strain", cli.tangent.strain,
+                 "driven strain of the state of the tangent entries (default 0)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--tangent-increment", cli.tangent.increment,
+                 "strain increment a tangent is for: dt = increment / rate (default 1e-3)")
+      ->check(CLI::PositiveNumber);
+}
+
+/// Turns the checked strings of @p names into the enums of @p cli.
+void parseChoices(const CliNames& names, Cli& cli) {
+  cli.plan = valueOf(kPlans, names.plan);
+  cli.estimate = valueOf(kEstimates, names.estimate);
+  cli.precision = valueOf(kPrecisions, names.precision);
+  cli.path_given = !names.path.empty();
+  cli.path.path =
+      *lamina::materials::parseDrivePath(cli.path_given ? names.path : "uniaxial-strain");
+}
+
+/// Refuses, before anything large is allocated, a grid of @p n voxels that
+/// does not fit in memory (docs/homogenize.md, Memory).
+void checkMemory(const Cli& cli, const lamina::micro::CellSpec& spec, const std::array<int, 3>& n,
+                 const lamina::homogenize::MpiSession& mpi) {
+  // per voxel 72 bytes of CG vectors, the FFT buffer, the phase index and
+  // with the energy estimate six displacement fields, over the ranks; rank 0
+  // also holds the whole phase map while it scatters it
+  const std::uint64_t voxels = static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
+                               static_cast<std::uint64_t>(n[2]);
+  const std::uint64_t per_voxel = 76 + (cli.single() ? 12 : 24) +
+                                  (cli.estimate == lamina::homogenize::Estimate::Energy ? 144 : 0);
+  // a cell with a size also gets its dispersion tensor, formed on rank 0
+  // from the whole grid: the spectra h_hat of the six cases (6 x 3 complex
+  // doubles per mode of the half spectrum, 146 bytes per voxel), the FFT
+  // buffer and the density spectrum (32), the gathered displacement of a
+  // case when distributed (24)
+  const std::uint64_t dispersion_per_voxel =
+      spec.physical_size ? 180 + (mpi.ranks() > 1 ? 24 : 0) : 0;
+  lamina::core::requireMemory(
+      double(voxels * per_voxel / static_cast<std::uint64_t>(mpi.ranks()) +
+             (mpi.rank() == 0 ? (8 + dispersion_per_voxel) * voxels : 0)),
+      "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
+          std::to_string(n[2]) + " voxels",
+      {cli.cell_path, 0, cli.resolution > 0 ? "--resolution" : "cell.resolution"},
+      "run it distributed: mpirun -np N homogenize " + cli.cell_path +
+          " ... (each rank holds 1/N of the fields), or --estimate stress "
+          "--precision single (90 bytes per voxel)");
+}
+
+/// Rank 0 builds the phase map of @p spec at @p n voxels; the others learn only its grid.
+lamina::micro::UnitCell buildCell(const lamina::micro::CellSpec& spec, const std::array<int, 3>& n,
+                                  lamina::homogenize::MpiSession& mpi) {
+  lamina::micro::UnitCell cell;
+  if (mpi.rank() == 0)
+    cell = lamina::micro::buildCell(spec, n);
+  double shape[6] = {static_cast<double>(cell.n[0]),
+                     static_cast<double>(cell.n[1]),
+                     static_cast<double>(cell.n[2]),
+                     cell.size[0],
+                     cell.size[1],
+                     cell.size[2]};
+  mpi.broadcast(shape, sizeof shape);
+  for (int d = 0; d < 3; ++d) {
+    cell.n[static_cast<std::size_t>(d)] = static_cast<int>(shape[d]);
+    cell.size[d] = shape[3 + d];
+  }
+  return cell;
+}
+
+/// The nonlinear cell along --path with its history in --out (serial).
+void runPath(const Cli& cli, const lamina::micro::CellSpec& spec,
+             const lamina::micro::UnitCell& cell, const lamina::homogenize::NonlinearOptions& nl) {
+  using namespace lamina;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto steps = homogenize::runPath(
+      spec, cell, cli.path, nl, cli.out, cli.field_steps, [&](const homogenize::StepResult& r) {
+        if (!cli.quiet)
+          std::fprintf(stderr,
+                       "step %d t %.4g s: E %.4g %.4g %.4g %.4g %.4g %.4g, Sigma %.4g %.4g "
+                       "%.4g %.4g %.4g %.4g MPa, newton %d krylov %d (%.2f s)\n",
+                       r.step, r.t, r.E[0], r.E[1], r.E[2], r.E[3], r.E[4], r.E[5],
+                       r.Sigma[0] / 1e6, r.Sigma[1] / 1e6, r.Sigma[2] / 1e6, r.Sigma[3] / 1e6,
+                       r.Sigma[4] / 1e6, r.Sigma[5] / 1e6, r.newton, r.krylov, r.wall_s);
+      });
+  int newton = 0, krylov = 0;
+  for (const auto& r : steps) {
+    newton += r.newton;
+    krylov += r.krylov;
+  }
+  std::printf("%zu steps of %s at %g /s on %d x %d x %d voxels: newton %d, krylov %d, "
+              "wall %.2f s; wrote %s\n",
+              steps.size(), materials::toString(cli.path.path), cli.path.rate, cell.n[0], cell.n[1],
+              cell.n[2], newton, krylov,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+              cli.out.c_str());
+}
+
+/// The nonlinear run: the strain path (--path, --out) and/or the
+/// rate-dependent tangent entries (--tangent-rates) into the library.
+void runNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec,
+                  const lamina::micro::UnitCell& cell, const lamina::homogenize::MpiSession& mpi) {
+  using namespace lamina;
+  LAMINA_CHECK(mpi.ranks() == 1, "nonlinear runs are serial (no mpirun)");
+  homogenize::NonlinearOptions nl;
+  nl.tol = cli.tol;
+  nl.eta = cli.eta;
+  nl.threads = cli.threads;
+  nl.measure = measureFlag(cli.plan);
+  if (cli.path_given && !cli.out.empty())
+    runPath(cli, spec, cell, nl);
+  else if (cli.path_given && cli.tangent.rates.empty())
+    throw Error("a nonlinear run needs --out FILE.csv (or --tangent-rates)");
+  if (cli.tangent.rates.empty())
+    return;
+  if (cli.name.empty())
+    throw Error("--tangent-rates needs --name NAME");
+  homogenize::TangentSpec tangent = cli.tangent;
+  tangent.path = cli.path;
+  materials::Library lib(materials::Library::resolvePath(cli.library));
+  homogenize::addTangentEntries(
+      spec, cell, cli.name, tangent, nl, lib, cli.overwrite, [&](const materials::Material& m) {
+        std::printf("added '%s' to %s\n", m.name.c_str(), lib.path().string().c_str());
+      });
+}
+
+/// The linear homogenization into the library (distributed under mpirun).
+void runLinear(const Cli& cli, const lamina::micro::CellSpec& spec,
+               const lamina::micro::UnitCell& cell, const lamina::homogenize::MpiSession& mpi) {
+  using namespace lamina;
+  if (cli.name.empty())
+    throw Error("--name NAME is required");
+  materials::Library lib(materials::Library::resolvePath(cli.library));
+  homogenize::Options opt;
+  opt.tol = cli.tol;
+  opt.threads = cli.threads;
+  opt.measure = measureFlag(cli.plan);
+  opt.quiet = cli.quiet || mpi.rank() != 0;
+  opt.estimate = cli.estimate;
+  if (cli.precision != PrecisionChoice::Auto)
+    opt.precision = cli.precision == PrecisionChoice::Single ? homogenize::Precision::Single
+                                                             : homogenize::Precision::Double;
+  const homogenize::Distribution dist = homogenize::Distribution::world(homogenize::gridOf(cell));
+  homogenize::homogenizeIntoLibrary(
+      spec, cell, cli.name, opt, lib, cli.overwrite,
+      [&](const homogenize::EntryResult& e) {
+        if (cli.json)
+          std::cout << homogenize::toJson(e).dump() << std::endl;
+        else
+          printHuman(e, cell, lib.path().string());
+      },
+      &dist);
+}
+
+/// The method: check the options, read the cell, size it, build it, run.
+void run(Cli& cli, lamina::homogenize::MpiSession& mpi) {
+  using namespace lamina;
+  if (!cli.name.empty()) // a nonlinear run without a library entry has none
+    core::checkName(cli.name, "entry name", {"", 0, "--name"});
+  core::checkThreads(cli.threads, "--threads");
+  const micro::CellSpec spec = micro::readCell(cli.cell_path, micro::lazyCatalog(cli.catalog));
+  std::array<int, 3> n = spec.resolution;
+  if (cli.resolution > 0)
+    n = {cli.resolution, cli.resolution, cli.resolution};
+  checkMemory(cli, spec, n, mpi);
+  const micro::UnitCell cell = buildCell(spec, n, mpi);
+  if (cli.nonlinear())
+    runNonlinear(cli, spec, cell, mpi);
+  else
+    runLinear(cli, spec, cell, mpi);
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
   lamina::homogenize::MpiSession mpi(&argc, &argv);
   CLI::App app{"homogenize: effective stiffness and density of a voxel unit cell "
                "(mpirun -np N homogenize ... runs it over N MPI ranks)"};
-  std::string cell_path, name, library, catalog;
-  bool json = false, overwrite = false, quiet = false;
-  std::string plan = "auto", estimate = "energy", precision = "auto";
-  int threads = 0, resolution = 0;
-  double tol = 1e-5;
-  app.add_option("cell", cell_path, "cell file (TOML)")->required();
-  app.add_option(
-      "--name", name,
-      "library entry name (with a J sweep: NAME-J<J>; with --tangent-rates: NAME-R<rate>)");
-  app.add_option("--library", library, "library file (default: $LAMINA_LIBRARY, XDG data dir)");
-  app.add_flag("--json", json, "print a JSON summary on stdout (one object per entry)");
-  app.add_option("--threads", threads, "OpenMP and FFTW threads")->check(CLI::NonNegativeNumber);
-  app.add_option("--tol", tol, "relative residual per load case")->check(CLI::PositiveNumber);
-  app.add_option("--resolution", resolution, "override the resolution: N^3 voxels")
-      ->check(CLI::Range(2, 4096));
-  app.add_option("--catalog", catalog, "catalog file (default: $LAMINA_CATALOG or built-in)");
-  app.add_flag("--overwrite", overwrite, "replace an existing entry of the same name");
-  app.add_option("--fftw-plan", plan,
-                 "FFTW planning: estimate, measure (wisdom cached in ~/.cache/lamina), "
-                 "auto (measure above 64^3)")
-      ->check(CLI::IsMember({"auto", "estimate", "measure"}));
-  app.add_option("--estimate", estimate,
-                 "C from the six solutions: energy (<eps_j:C:eps_k>, error quadratic in the "
-                 "residual, keeps 6 displacement fields) or stress (<sigma_k>, least memory)")
-      ->check(CLI::IsMember({"energy", "stress"}));
-  app.add_option("--precision", precision,
-                 "FFT precision of the preconditioner: auto (single when tol >= 1e-6), single, "
-                 "double")
-      ->check(CLI::IsMember({"auto", "single", "double"}));
-  app.add_flag("--quiet", quiet, "no progress line");
-  // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
-  std::string path_name, out;
-  lamina::homogenize::PathSpec path;
-  lamina::homogenize::TangentSpec tangent;
-  std::vector<int> field_steps;
-  double eta = 0.1;
-  auto* path_opt =
-      app.add_option("--path", path_name,
-                     "nonlinear run: uniaxial-strain | shear | confined | uniaxial-stress")
-          ->check(CLI::IsMember({"uniaxial-stress", "uniaxial-strain", "shear", "confined"}));
-  app.add_option("--rate", path.rate, "nonlinear: driven strain rate (1/s)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--to", path.to, "nonlinear: final driven strain")->check(CLI::PositiveNumber);
-  app.add_option("--steps", path.steps, "nonlinear: load steps per leg (default 100)")
-      ->check(CLI::Range(1, 10000000));
-  app.add_flag("--unload", path.unload, "nonlinear: back to zero strain at the same rate");
-  app.add_option("--out", out, "nonlinear: history CSV (also OUT-phases.csv, OUT-fields.h5)");
-  app.add_option("--fields", field_steps, "nonlinear: steps whose fields are written (XDMF)")
-      ->delimiter(',');
-  app.add_option("--eta", eta, "nonlinear: CG forcing term per Newton step (default 0.1)")
-      ->check(CLI::Range(1e-12, 0.9));
-  app.add_option("--tangent-rates", tangent.rates,
-                 "rates (1/s, inf allowed) of effective tangent entries NAME-R<rate>")
-      ->delimiter(',');
-  app.add_option("--tangent-strain", tangent.strain,
-                 "driven strain of the state of the tangent entries (default 0)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--tangent-increment", tangent.increment,
-                 "strain increment a tangent is for: dt = increment / rate (default 1e-3)")
-      ->check(CLI::PositiveNumber);
+  Cli cli;
+  CliNames names;
+  addOptions(app, cli, names);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -151,124 +388,8 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : lamina::kExitUsage;
   }
   try {
-    using namespace lamina;
-    if (!name.empty()) // a nonlinear run without a library entry has none
-      core::checkName(name, "entry name", {"", 0, "--name"});
-    core::checkThreads(threads, "--threads");
-    const micro::CellSpec spec = micro::readCell(cell_path, micro::lazyCatalog(catalog));
-    std::array<int, 3> n = spec.resolution;
-    if (resolution > 0)
-      n = {resolution, resolution, resolution};
-    // checked before anything large is allocated (docs/homogenize.md,
-    // Memory): per voxel 72 bytes of CG vectors, the FFT buffer, the phase
-    // index and with the energy estimate six displacement fields, over the
-    // ranks; rank 0 also holds the whole phase map while it scatters it
-    const std::uint64_t voxels = static_cast<std::uint64_t>(n[0]) *
-                                 static_cast<std::uint64_t>(n[1]) *
-                                 static_cast<std::uint64_t>(n[2]);
-    const bool single =
-        precision == "single" ||
-        (precision == "auto" && homogenize::autoPrecision(tol) == homogenize::Precision::Single);
-    const std::uint64_t per_voxel = 76 + (single ? 12 : 24) + (estimate == "energy" ? 144 : 0);
-    // a cell with a size also gets its dispersion tensor, formed on rank 0
-    // from the whole grid: the spectra h_hat of the six cases (6 x 3 complex
-    // doubles per mode of the half spectrum, 146 bytes per voxel), the FFT
-    // buffer and the density spectrum (32), the gathered displacement of a
-    // case when distributed (24)
-    const std::uint64_t dispersion_per_voxel =
-        spec.physical_size ? 180 + (mpi.ranks() > 1 ? 24 : 0) : 0;
-    core::requireMemory(double(voxels * per_voxel / static_cast<std::uint64_t>(mpi.ranks()) +
-                               (mpi.rank() == 0 ? (8 + dispersion_per_voxel) * voxels : 0)),
-                        "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) +
-                            " x " + std::to_string(n[2]) + " voxels",
-                        {cell_path, 0, resolution > 0 ? "--resolution" : "cell.resolution"},
-                        "run it distributed: mpirun -np N homogenize " + cell_path +
-                            " ... (each rank holds 1/N of the fields), or --estimate stress "
-                            "--precision single (90 bytes per voxel)");
-    // rank 0 builds the phase map; the others learn only its grid
-    micro::UnitCell cell;
-    if (mpi.rank() == 0)
-      cell = micro::buildCell(spec, n);
-    double shape[6] = {static_cast<double>(cell.n[0]),
-                       static_cast<double>(cell.n[1]),
-                       static_cast<double>(cell.n[2]),
-                       cell.size[0],
-                       cell.size[1],
-                       cell.size[2]};
-    mpi.broadcast(shape, sizeof shape);
-    for (int d = 0; d < 3; ++d) {
-      cell.n[static_cast<std::size_t>(d)] = static_cast<int>(shape[d]);
-      cell.size[d] = shape[3 + d];
-    }
-    if (!path_name.empty() || !tangent.rates.empty()) {
-      LAMINA_CHECK(mpi.ranks() == 1, "nonlinear runs are serial (no mpirun)");
-      path.path = *materials::parseDrivePath(path_name.empty() ? "uniaxial-strain" : path_name);
-      homogenize::NonlinearOptions nl;
-      nl.tol = tol;
-      nl.eta = eta;
-      nl.threads = threads;
-      nl.measure = plan == "auto" ? -1 : plan == "measure" ? 1 : 0;
-      if (path_opt->count() > 0 && !out.empty()) {
-        const auto t0 = std::chrono::steady_clock::now();
-        const auto steps = homogenize::runPath(
-            spec, cell, path, nl, out, field_steps, [&](const homogenize::StepResult& r) {
-              if (!quiet)
-                std::fprintf(stderr,
-                             "step %d t %.4g s: E %.4g %.4g %.4g %.4g %.4g %.4g, Sigma %.4g %.4g "
-                             "%.4g %.4g %.4g %.4g MPa, newton %d krylov %d (%.2f s)\n",
-                             r.step, r.t, r.E[0], r.E[1], r.E[2], r.E[3], r.E[4], r.E[5],
-                             r.Sigma[0] / 1e6, r.Sigma[1] / 1e6, r.Sigma[2] / 1e6, r.Sigma[3] / 1e6,
-                             r.Sigma[4] / 1e6, r.Sigma[5] / 1e6, r.newton, r.krylov, r.wall_s);
-            });
-        int newton = 0, krylov = 0;
-        for (const auto& r : steps) {
-          newton += r.newton;
-          krylov += r.krylov;
-        }
-        std::printf("%zu steps of %s at %g /s on %d x %d x %d voxels: newton %d, krylov %d, "
-                    "wall %.2f s; wrote %s\n",
-                    steps.size(), path_name.c_str(), path.rate, cell.n[0], cell.n[1], cell.n[2],
-                    newton, krylov,
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-                    out.c_str());
-      } else if (path_opt->count() > 0 && tangent.rates.empty()) {
-        throw Error("a nonlinear run needs --out FILE.csv (or --tangent-rates)");
-      }
-      if (!tangent.rates.empty()) {
-        if (name.empty())
-          throw Error("--tangent-rates needs --name NAME");
-        tangent.path = path;
-        materials::Library lib(materials::Library::resolvePath(library));
-        homogenize::addTangentEntries(
-            spec, cell, name, tangent, nl, lib, overwrite, [&](const materials::Material& m) {
-              std::printf("added '%s' to %s\n", m.name.c_str(), lib.path().string().c_str());
-            });
-      }
-      return 0;
-    }
-    if (name.empty())
-      throw Error("--name NAME is required");
-    materials::Library lib(materials::Library::resolvePath(library));
-    homogenize::Options opt;
-    opt.tol = tol;
-    opt.threads = threads;
-    opt.measure = plan == "auto" ? -1 : plan == "measure" ? 1 : 0;
-    opt.quiet = quiet || mpi.rank() != 0;
-    opt.estimate =
-        estimate == "stress" ? homogenize::Estimate::Stress : homogenize::Estimate::Energy;
-    if (precision != "auto")
-      opt.precision =
-          precision == "single" ? homogenize::Precision::Single : homogenize::Precision::Double;
-    const homogenize::Distribution dist = homogenize::Distribution::world(homogenize::gridOf(cell));
-    homogenize::homogenizeIntoLibrary(
-        spec, cell, name, opt, lib, overwrite,
-        [&](const homogenize::EntryResult& e) {
-          if (json)
-            std::cout << homogenize::toJson(e).dump() << std::endl;
-          else
-            printHuman(e, cell, lib.path().string());
-        },
-        &dist);
+    parseChoices(names, cli);
+    run(cli, mpi);
   } catch (const lamina::DivergenceError& e) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());
     return mpi.abort(lamina::kExitDivergence);

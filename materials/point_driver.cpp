@@ -107,6 +107,13 @@ std::optional<DrivePath> parseDrivePath(const std::string& name) {
   return std::nullopt;
 }
 
+std::vector<std::string> drivePathNames() {
+  std::vector<std::string> names;
+  for (const auto& entry : kPathNames)
+    names.emplace_back(entry.second);
+  return names;
+}
+
 std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& o) {
   LAMINA_CHECK(o.rate > 0 && std::isfinite(o.rate), "--rate must be positive, got ", o.rate);
   LAMINA_CHECK(o.to > 0 && std::isfinite(o.to), "--to must be positive, got ", o.to);

@@ -32,6 +32,8 @@ enum class DrivePath { UniaxialStress, UniaxialStrain, Shear, Confined };
 const char* toString(DrivePath p);
 /// @return the path of spelling @p name, or nothing
 std::optional<DrivePath> parseDrivePath(const std::string& name);
+/// @return every spelling of toString(DrivePath), in declaration order (for a CLI's check)
+std::vector<std::string> drivePathNames();
 
 /// Small strain (sym(F - I), J = 1 + tr eps, no rotation) or finite deformation.
 enum class Kinematics { Small, Finite };
