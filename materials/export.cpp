@@ -158,25 +158,45 @@ nlohmann::json materialToJson(const Material& m) {
   return j;
 }
 
-std::string exportCard(const Material& m, const std::string& format) {
+const std::array<std::pair<const char*, ExportFormat>, 5>& exportFormats() {
+  static const std::array<std::pair<const char*, ExportFormat>, 5> formats{
+      {{"abaqus", ExportFormat::Abaqus},
+       {"calculix", ExportFormat::Calculix},
+       {"lsdyna", ExportFormat::Lsdyna},
+       {"lsdyna-small", ExportFormat::LsdynaSmall},
+       {"json", ExportFormat::Json}}};
+  return formats;
+}
+
+ExportFormat parseExportFormat(const std::string& name) {
+  std::string names;
+  for (const auto& [n, f] : exportFormats()) {
+    if (name == n)
+      return f;
+    names += (names.empty() ? "" : ", ") + std::string(n);
+  }
+  throw Error("unknown export format '" + name + "' (" + names + ")", {"--format", 0, name});
+}
+
+std::string exportCard(const Material& m, ExportFormat format) {
   // Names are written into comment and keyword lines of the cards: a
   // newline or control character there would start a line of its own.
   core::checkName(m.name, "material name");
   for (const Ply& p : m.plies)
     core::checkName(p.material, "ply material name");
-  if (format == "abaqus")
+  switch (format) {
+  case ExportFormat::Abaqus:
     return abaqusLike(m, "ANISOTROPIC", true);
-  if (format == "calculix")
+  case ExportFormat::Calculix:
     return abaqusLike(m, "ANISO", false);
-  if (format == "lsdyna")
+  case ExportFormat::Lsdyna:
     return lsdyna(m, true);
-  if (format == "lsdyna-small")
+  case ExportFormat::LsdynaSmall:
     return lsdyna(m, false);
-  if (format == "json")
-    return materialToJson(m).dump(2) + "\n";
-  throw Error("unknown export format '" + format +
-                  "' (abaqus, calculix, lsdyna, lsdyna-small, json)",
-              {"--format", 0, format});
+  case ExportFormat::Json:
+    break;
+  }
+  return materialToJson(m).dump(2) + "\n";
 }
 
 } // namespace lamina::materials

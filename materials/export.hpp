@@ -22,13 +22,24 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <string>
+#include <utility>
 
 namespace lamina::materials {
 
-/// @return the card text for @p format ("abaqus", "calculix", "lsdyna",
-/// "lsdyna-small", "json"); throws lamina::Error for an unknown format.
-std::string exportCard(const Material& m, const std::string& format);
+/// The card formats of exportCard().
+enum class ExportFormat { Abaqus, Calculix, Lsdyna, LsdynaSmall, Json };
+
+/// @return the name of every format ("abaqus", "calculix", "lsdyna",
+/// "lsdyna-small", "json"): the one table of the --format names
+const std::array<std::pair<const char*, ExportFormat>, 5>& exportFormats();
+
+/// @return the format named @p name; throws lamina::Error (naming --format) otherwise
+ExportFormat parseExportFormat(const std::string& name);
+
+/// @return the card text of @p m in @p format
+std::string exportCard(const Material& m, ExportFormat format);
 
 /// @return a 6x6 matrix as 6 JSON rows of 6 numbers (the "C" of every JSON
 /// output: Pa, lamina order)

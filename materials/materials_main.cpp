@@ -17,10 +17,20 @@
 #include <ctime>
 #include <iostream>
 #include <sstream>
+#include <string>
+#include <vector>
 
 namespace mat = lamina::materials;
 
 namespace {
+
+/// @return the --format names of mat::exportFormats(), for CLI::IsMember
+std::vector<std::string> formatNames() {
+  std::vector<std::string> names;
+  for (const auto& f : mat::exportFormats())
+    names.emplace_back(f.first);
+  return names;
+}
 
 std::string nowIso() {
   const std::time_t t = std::time(nullptr);
@@ -156,7 +166,7 @@ int main(int argc, char** argv) {
   auto* exportCmd = app.add_subcommand("export", "print a card for another code");
   exportCmd->add_option("NAME", name, "entry name")->required();
   exportCmd->add_option("--format", format, "abaqus | calculix | lsdyna | lsdyna-small | json")
-      ->check(CLI::IsMember({"abaqus", "calculix", "lsdyna", "lsdyna-small", "json"}));
+      ->check(CLI::IsMember(formatNames()));
 
   auto* remove = app.add_subcommand("remove", "remove an entry");
   remove->add_option("NAME", name, "entry name")->required();
@@ -167,7 +177,7 @@ int main(int argc, char** argv) {
   mat::DriveOptions drive;
   driveCmd->add_option("NAME", name, "library entry or catalog material")->required();
   driveCmd->add_option("--path", pathName, "uniaxial-stress | uniaxial-strain | shear | confined")
-      ->check(CLI::IsMember({"uniaxial-stress", "uniaxial-strain", "shear", "confined"}));
+      ->check(CLI::IsMember(mat::drivePathNames()));
   driveCmd->add_option("--rate", drive.rate, "driven strain rate (1/s)")
       ->required()
       ->check(CLI::PositiveNumber);
@@ -267,7 +277,7 @@ int main(int argc, char** argv) {
     }
     if (exportCmd->parsed()) {
       const mat::Library lib(path);
-      std::cout << mat::exportCard(lib.get(name), format);
+      std::cout << mat::exportCard(lib.get(name), mat::parseExportFormat(format));
       return 0;
     }
     if (driveCmd->parsed()) {

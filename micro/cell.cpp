@@ -153,12 +153,16 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
     p.setLattice(readLattice(t, "normal"));
     break;
   }
-  const std::string placement = t.getString("placement", "single");
-  if (placement == "single") {
-    g.placement = Placement::Single;
+  g.placement = t.getChoice("placement",
+                            {{"single", Placement::Single},
+                             {"lattice", Placement::Lattice},
+                             {"random", Placement::Random}},
+                            Placement::Single);
+  switch (g.placement) {
+  case Placement::Single:
     p.center = t.has("center") ? readVector3(t, "center") : Eigen::Vector3d(0.5 * cell.size);
-  } else if (placement == "lattice") {
-    g.placement = Placement::Lattice;
+    break;
+  case Placement::Lattice: {
     const auto c = t.getDoubleArray("lattice");
     if (c.size() != 3)
       t.fail("lattice", "must give 3 counts [n1, n2, n3]");
@@ -173,12 +177,12 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
                               " inclusions per cell (placement tests every pair)");
       g.lattice[static_cast<std::size_t>(i)] = static_cast<int>(ci);
     }
-  } else if (placement == "random") {
-    g.placement = Placement::Random;
+    break;
+  }
+  case Placement::Random:
     g.seed = static_cast<std::uint64_t>(t.getInt("seed", 1));
     g.max_attempts = static_cast<int>(t.getIntIn("max_attempts", 1, kMaxAttempts, 200000));
-  } else {
-    t.fail("placement", "unknown placement '" + placement + "' (single, lattice, random)");
+    break;
   }
   if (t.has("count")) {
     if (g.placement != Placement::Random)

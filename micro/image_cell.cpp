@@ -15,6 +15,9 @@ constexpr const char* kImageKeys[] = {"format",     "dataset",    "axes",       
                                       "type",       "byte_order", "header_bytes", "crop",
                                       "downsample", "voxel_size"};
 
+/// byte_order of a raw image.
+enum class ByteOrder { Little, Big };
+
 std::array<int, 3> readCounts(const core::TableReader& t, const std::string& key, int min) {
   const auto v = t.getDoubleArray(key);
   if (v.size() != 3)
@@ -74,10 +77,9 @@ ImageSource readImageSource(const core::TableReader& c, const std::string& cell_
       c.fail("type", "unknown type '" + t +
                          "' (int8, uint8, int16, uint16, int32, uint32, "
                          "int64, uint64)");
-    const std::string bo = c.getString("byte_order", "little");
-    if (bo != "little" && bo != "big")
-      c.fail("byte_order", "must be \"little\" or \"big\"");
-    s.big_endian = bo == "big";
+    s.big_endian =
+        c.getChoice("byte_order", {{"little", ByteOrder::Little}, {"big", ByteOrder::Big}},
+                    ByteOrder::Little) == ByteOrder::Big;
     const auto hb = c.getInt("header_bytes", 0);
     if (hb < 0)
       c.fail("header_bytes", "must not be negative");
@@ -87,10 +89,8 @@ ImageSource readImageSource(const core::TableReader& c, const std::string& cell_
   if (c.has("axes")) {
     if (s.format != ImageFormat::Hdf5 && !raw)
       c.fail("axes", "applies to HDF5 and raw images (VTI and TIFF store x fastest)");
-    const std::string a = c.getString("axes");
-    if (a != "xyz" && a != "zyx")
-      c.fail("axes", "must be \"xyz\" (x slowest) or \"zyx\" (x fastest)");
-    s.axes = a == "xyz" ? AxisOrder::Xyz : AxisOrder::Zyx;
+    // "xyz": x slowest, "zyx": x fastest
+    s.axes = c.getChoice("axes", {{"xyz", AxisOrder::Xyz}, {"zyx", AxisOrder::Zyx}}, s.axes);
   }
   if (auto crop = c.optionalTable("crop")) {
     s.crop_start = crop->has("start") ? readCounts(*crop, "start", 0) : std::array<int, 3>{};
