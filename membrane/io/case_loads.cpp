@@ -1,0 +1,253 @@
+/// @file case_loads.cpp
+/// @brief [[load]], [[point_mass]], [gravity], [[blast]] and [[drag]] of a case.
+
+#include "membrane/io/case_builders.hpp"
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/names.hpp"
+#include "core/toml_reader.hpp"
+#include "membrane/loads/blast_pressure.hpp"
+#include "membrane/loads/element_pressure.hpp"
+#include "membrane/loads/follower_drag.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <set>
+
+namespace lamina::membrane::case_io {
+
+namespace {
+
+/// Consistent nodal forces of a traction b(x, y) (N/m^2) on the elements,
+/// integrated with the 3-point edge-midpoint rule (exact for quadratics).
+template <typename F>
+void addTraction(const Mesh& m, const std::vector<int>& elems, const Eigen::Vector3d& dir,
+                 F&& traction, Eigen::VectorXd& f) {
+  for (int e : elems) {
+    const auto& t = m.triangles[e];
+    const double A = m.area(e);
+    for (int q = 0; q < 3; ++q) {
+      // Midpoint of edge (q, q+1): N_q = N_{q+1} = 1/2, the third is 0.
+      const Eigen::Vector2d p = 0.5 * (m.nodes[t[q]] + m.nodes[t[(q + 1) % 3]]);
+      const double w = A / 3 * traction(p);
+      for (int k : {q, (q + 1) % 3})
+        for (int c = 0; c < 3; ++c)
+          f[3 * t[k] + c] += 0.5 * w * dir[c];
+    }
+  }
+}
+
+/// [[load]]: force, pressure (a follower pressure on the large-deflection
+/// model) or distributed (eq. 31).
+void readLoadTables(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
+  const int ndof = 3 * mesh.numNodes();
+  const auto [xmin, xmax, ymin, ymax] = mesh.bounds();
+  for (const auto& r : root.tableArray("load")) {
+    Load load;
+    const std::string type = r.getString("type");
+    load.name = r.getString("name", type + std::to_string(model.loads.size()));
+    load.pattern = Eigen::VectorXd::Zero(ndof);
+    if (type == "force") {
+      const double value = r.getDouble("value");
+      const Eigen::Vector3d dir = readDirection(r, Eigen::Vector3d::UnitZ());
+      const std::string target = r.getString("target", "elements");
+      const Selector sel = readSelector(r);
+      if (target == "elements") {
+        // Total force spread uniformly over the selected area (eq. 25 with b = F/A).
+        const auto elems = selectElements(mesh, sel, r);
+        double area = 0;
+        for (int e : elems)
+          area += mesh.area(e);
+        addTraction(
+            mesh, elems, dir, [&](const Eigen::Vector2d&) { return value / area; }, load.pattern);
+      } else if (target == "nodes") {
+        const auto nodes = selectNodes(mesh, sel, r);
+        for (int node : nodes)
+          for (int c = 0; c < 3; ++c)
+            load.pattern[3 * node + c] += value * dir[c] / static_cast<double>(nodes.size());
+      } else {
+        r.fail("target", "target must be \"elements\" or \"nodes\"");
+      }
+    } else if (type == "pressure") {
+      const double p = r.getDouble("value");
+      const auto elems =
+          r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all")
+              ? selectElements(mesh, readSelector(r), r)
+              : selectElements(mesh, Selector{SelectBy::All, "", {}, {}, "all"}, r);
+      if (model.kind == ModelKind::LargeDeflection) {
+        // Follows the surface: current normal, current area.
+        model.surface_loads.push_back(
+            std::make_shared<UniformPressure>(load.name, elems, p, TimeProfile::read(r)));
+        continue;
+      }
+      addTraction(
+          mesh, elems, Eigen::Vector3d::UnitZ(), [&](const Eigen::Vector2d&) { return p; },
+          load.pattern);
+    } else if (type == "distributed") {
+      // eq. (31): b = b0 cos^2(pi r / (2 L)) for r <= L, normal to the membrane,
+      // r measured from the centre; b0 is a force per volume (N/m^3) as in the paper.
+      const double b0 = r.getDouble("b0");
+      const double L = r.getDouble("L", std::max(xmax - xmin, ymax - ymin));
+      if (!(L > 0))
+        r.fail("L", "must be > 0");
+      Eigen::Vector2d c(0.5 * (xmin + xmax), 0.5 * (ymin + ymax));
+      if (r.has("centre"))
+        c = readPoint(r, "centre");
+      // times the thickness of each element's section (b is per volume)
+      Eigen::VectorXd scaled = Eigen::VectorXd::Zero(ndof);
+      for (int e = 0; e < mesh.numElements(); ++e) {
+        const double h = model.sections[mesh.region_of[e]].thickness;
+        std::vector<int> one{e};
+        addTraction(
+            mesh, one, Eigen::Vector3d::UnitZ(),
+            [&](const Eigen::Vector2d& p) {
+              const double rr = (p - c).norm();
+              const double cs = std::cos(kPi * rr / (2 * L));
+              return rr <= L ? h * b0 * cs * cs : 0.0;
+            },
+            scaled);
+      }
+      load.pattern = scaled;
+    } else {
+      r.fail("type", "unknown load type '" + type + "' (force, pressure, distributed)");
+    }
+    load.profile = TimeProfile::read(r);
+    model.loads.push_back(std::move(load));
+  }
+}
+
+/// [[point_mass]]: `mass` is the total, split equally over the selected nodes.
+void readPointMasses(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
+  // Drag paper section 4.2: the suspended mass (one node for `at`).
+  for (const auto& r : root.tableArray("point_mass")) {
+    const double m = r.getDouble("mass");
+    if (!(m > 0))
+      r.fail("mass", "point mass must be > 0");
+    const auto nodes = selectNodes(mesh, readSelector(r), r);
+    for (int node : nodes)
+      model.point_masses.emplace_back(node, m / double(nodes.size()));
+  }
+}
+
+/// [gravity]: body force rho h g (consistent = lumped row sums) plus the point masses.
+void readGravity(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
+  const int ndof = 3 * mesh.numNodes();
+  if (auto g = root.optionalTable("gravity")) {
+    const auto gv = g->getDoubleArray("g");
+    if (gv.size() != 3)
+      g->fail("g", "expected [gx, gy, gz] (m/s^2)");
+    Load load;
+    load.name = "gravity";
+    load.pattern = Eigen::VectorXd::Zero(ndof);
+    for (int e = 0; e < mesh.numElements(); ++e) {
+      const auto& s = model.sections[mesh.region_of[e]];
+      const double m3 = s.density * s.thickness * mesh.area(e) / 3;
+      for (int node : mesh.triangles[e])
+        for (int c = 0; c < 3; ++c)
+          load.pattern[3 * node + c] += m3 * gv[c];
+    }
+    for (const auto& [node, m] : model.point_masses)
+      for (int c = 0; c < 3; ++c)
+        load.pattern[3 * node + c] += m * gv[c];
+    model.loads.push_back(std::move(load));
+  }
+}
+
+} // namespace
+
+/// [[load]], [[point_mass]] and [gravity].
+void readLoads(const core::TableReader& root, Model& model) {
+  readLoadTables(root, model);
+  readPointMasses(root, model);
+  readGravity(root, model);
+}
+
+/// [[blast]]: an air blast from a charge (Kingery-Bulmash, Friedlander,
+/// angle of incidence) or a user pressure history (CSV), acting as a
+/// follower pressure on the selected elements (all by default).
+void readBlasts(const core::TableReader& root, Model& model, const std::filesystem::path& path) {
+  for (const auto& r : root.tableArray("blast")) {
+    if (model.kind != ModelKind::LargeDeflection)
+      r.failHere("[[blast]] needs model = \"large_deflection\" (a follower load)");
+    const bool selected =
+        r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all");
+    const auto elems = selectElements(
+        model.mesh, selected ? readSelector(r) : Selector{SelectBy::All, "", {}, {}, "all"}, r);
+    const std::string name =
+        r.getString("name", "blast" + std::to_string(model.surface_loads.size()));
+    if (r.has("table")) {
+      if (r.has("charge"))
+        r.fail("table", "give either charge (a Kingery-Bulmash blast) or table (a pressure "
+                        "history), not both");
+      const auto csv = path.parent_path() / r.getString("table");
+      model.surface_loads.push_back(
+          std::make_shared<BlastPressure>(name, elems, PressureTable::readCsv(csv.string())));
+      continue;
+    }
+    BlastCharge c;
+    c.mass = r.getDouble("charge");
+    if (!(c.mass > 0) || !std::isfinite(c.mass))
+      r.fail("charge", "the charge must be a positive mass (kg)");
+    c.tnt_equivalence = r.getDouble("tnt_equivalence", 1.0);
+    if (!(c.tnt_equivalence > 0) || !std::isfinite(c.tnt_equivalence))
+      r.fail("tnt_equivalence", "must be > 0");
+    const auto pos = r.getDoubleArray("position");
+    if (pos.size() != 3)
+      r.fail("position", "expected [x, y, z] (m)");
+    c.position = Eigen::Vector3d(pos[0], pos[1], pos[2]);
+    c.burst = r.getChoice("burst", burstChoices(), Burst::Hemispherical);
+    c.policy =
+        r.getChoice("out_of_range", {{"refuse", OutOfRange::Refuse}, {"clamp", OutOfRange::Clamp}},
+                    OutOfRange::Refuse);
+    try {
+      model.surface_loads.push_back(std::make_shared<BlastPressure>(name, elems, model.mesh, c));
+    } catch (const Error& e) {
+      r.fail("charge", e.message());
+    }
+  }
+}
+
+/// [[drag]] (issue 5): on surface regions.
+void readDrags(const core::TableReader& root, Model& model) {
+  const Mesh& mesh = model.mesh;
+  const int n = mesh.numNodes();
+  for (const auto& r : root.tableArray("drag")) {
+    Drag d;
+    const Selector sel =
+        r.has("region") ? readSelector(r) : Selector{SelectBy::All, "", {}, {}, "all"};
+    if (sel.kind != SelectBy::Region && sel.kind != SelectBy::All)
+      r.failHere("drag acts on a surface region: give region = NAME (or nothing for all)");
+    d.cd = r.getDouble("cd");
+    if (!(d.cd > 0))
+      r.fail("cd", "drag coefficient must be > 0");
+    d.fluid_density = r.getDouble("fluid_density", 1.225);
+    if (!(d.fluid_density > 0))
+      r.fail("fluid_density", "must be > 0");
+    d.resultant = r.getChoice("velocity", {{"normal", false}, {"resultant", true}}, false);
+    const auto elems = selectElements(mesh, sel, r);
+    if (model.kind == ModelKind::LargeDeflection) {
+      model.surface_loads.push_back(
+          std::make_shared<FollowerDrag>("drag" + std::to_string(model.surface_loads.size()), elems,
+                                         d.cd, d.fluid_density, d.resultant));
+      continue;
+    }
+    std::vector<double> area(n, 0.0);
+    for (int e : elems)
+      for (int node : mesh.triangles[e])
+        area[node] += mesh.area(e) / 3;
+    for (int i = 0; i < n; ++i)
+      if (area[i] > 0) {
+        d.nodes.push_back(i);
+        d.area.push_back(area[i]);
+      }
+    model.drags.push_back(std::move(d));
+  }
+}
+
+} // namespace lamina::membrane::case_io

@@ -1,0 +1,51 @@
+/// @file case_mesh.cpp
+/// @brief [mesh] of a case: structured rectangle or gmsh file.
+
+#include "membrane/io/case_builders.hpp"
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/names.hpp"
+#include "core/resources.hpp"
+#include "core/toml_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <set>
+
+namespace lamina::membrane::case_io {
+
+Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path) {
+  const std::string type = r.getString("type", "rectangle");
+  if (type == "rectangle") {
+    const double Lx = r.getDouble("Lx");
+    const double Ly = r.getDouble("Ly", Lx);
+    const auto nx = r.getInt("nx");
+    const auto ny = r.getInt("ny", nx);
+    if (!(Lx > 0))
+      r.fail("Lx", "must be > 0");
+    if (!(Ly > 0))
+      r.fail("Ly", "must be > 0");
+    if (nx < 1 || nx > 100000)
+      r.fail("nx", "must be in [1, 100000]");
+    if (ny < 1 || ny > 100000)
+      r.fail("ny", "must be in [1, 100000]");
+    requireRunMemory(double(nx + 1) * double(ny + 1),
+                     "a " + std::to_string(nx) + " x " + std::to_string(ny) + " rectangle",
+                     {r.file(), 0, r.path("nx")});
+    return structuredRectangle(Lx, Ly, static_cast<int>(nx), static_cast<int>(ny));
+  }
+  if (type == "gmsh") {
+    std::filesystem::path file = r.getString("file");
+    if (file.is_relative())
+      file = case_path.parent_path() / file;
+    if (!std::filesystem::exists(file))
+      r.fail("file", "mesh file not found: " + file.string());
+    return readGmsh(file);
+  }
+  r.fail("type", "unknown mesh type '" + type + "' (rectangle, gmsh)");
+}
+
+} // namespace lamina::membrane::case_io
