@@ -64,6 +64,11 @@ bool H5File::exists(const std::string& name) const {
   }
 }
 
+void H5File::remove(const std::string& name) {
+  if (exists(name) && H5Ldelete(file_.id(), name.c_str(), H5P_DEFAULT) < 0)
+    fail("cannot remove", name);
+}
+
 void H5File::createGroup(const std::string& name) {
   if (exists(name))
     return;

@@ -57,6 +57,9 @@ public:
                                      std::vector<std::uint64_t>& dims) const;
   /// @return whether the object (dataset or group) @p name exists.
   bool exists(const std::string& name) const;
+  /// Removes the object (dataset or group, with its content) @p name if it
+  /// exists; HDF5 keeps the file's size, the object is no longer in it.
+  void remove(const std::string& name);
   /// Attaches a string attribute to object @p object ("/" for the file).
   void writeAttribute(const std::string& object, const std::string& attr, const std::string& value);
   /// Attaches a double attribute to object @p object.

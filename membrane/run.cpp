@@ -9,9 +9,12 @@
 #include "membrane/io/output.hpp"
 #include "membrane/simulation.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iostream>
 #include <optional>
 
 namespace lamina::membrane {
@@ -185,6 +188,9 @@ private:
     h["run/csv_bytes"] = Eigen::Vector3d(static_cast<double>(probes_->bytes()),
                                          static_cast<double>(energy_->bytes()),
                                          reactions_ ? static_cast<double>(reactions_->bytes()) : 0);
+    // OpenMP threads: a sum split over another number of threads rounds
+    // differently, so a restart compares it (warning only).
+    h["run/omp_threads"] = Eigen::VectorXd::Constant(1, omp_get_max_threads());
     std::vector<double> times;
     if (fields_)
       times = fields_->times();
@@ -233,7 +239,24 @@ private:
     } catch (const Error& e) {
       throw Error("checkpoint does not fit this run: " + e.message(), where);
     }
+    warnOnOtherThreadCount(c.data, path);
     return c;
+  }
+
+  /// Warns (stderr) when checkpoint @p h was written with another number
+  /// of OpenMP threads than this run has: the run continues, but its
+  /// results may differ from an uninterrupted run in the last bits.
+  static void warnOnOtherThreadCount(const History& h, const std::filesystem::path& path) {
+    const auto it = h.find("run/omp_threads");
+    if (it == h.end() || it->second.size() != 1) // a checkpoint written before it was recorded
+      return;
+    const int then = static_cast<int>(it->second[0]), now = omp_get_max_threads();
+    if (then != now)
+      std::cerr << "warning: " << path.string() << " was written with " << then
+                << " OpenMP threads, this run has " << now
+                << " (OMP_NUM_THREADS): the continued run is not guaranteed to be bit-identical "
+                   "to an uninterrupted one; restart with OMP_NUM_THREADS="
+                << then << " for that\n";
   }
 
   std::string digest() const { return opt_.case_digest.empty() ? model_.name : opt_.case_digest; }

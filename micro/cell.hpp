@@ -46,6 +46,13 @@ inline constexpr int kMaxResolution = 4096;
 inline constexpr std::int64_t kMaxInclusions = 10000;
 /// Most random placement attempts per inclusion.
 inline constexpr std::int64_t kMaxAttempts = 1000000;
+/// Most overlap tests of one cell's random placement, all groups together
+/// (each attempt tests its candidate against every inclusion placed so
+/// far): bounds the worst case of the limits above (10,000 inclusions x
+/// 1,000,000 attempts, hours) while 10,000 spheres placed at a few attempts
+/// each (about 5e7 tests per attempt) still fit. docs/reliability.md has
+/// the times.
+inline constexpr std::int64_t kMaxOverlapTests = 400000000;
 
 /// How the inclusions of a group are placed.
 enum class Placement { Single, Lattice, Random };
@@ -81,6 +88,9 @@ struct CellSpec {
   std::optional<bool> composite_voxels;      ///< generated cells: `composite_voxels`
   std::vector<Phase> phases;                 ///< phases[0] is the matrix
   std::vector<InclusionGroup> groups;        ///< inclusion groups, placed in order
+  /// random placement's work bound (overlap tests); only code lowers it
+  /// (tests, fuzzers), no key sets it
+  std::int64_t max_overlap_tests = kMaxOverlapTests;
 
   /// @return the index of the phase named @p name, -1 if none
   int phaseIndex(const std::string& name) const;

@@ -5,6 +5,7 @@
 #include "micro/composite_voxel.hpp"
 #include "micro/image_cell.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -67,6 +68,7 @@ std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>
   target.clear();
   analytic.clear();
   std::int64_t total = 0;
+  std::int64_t tests = 0; // overlap tests of the random placement, bounded
   for (const InclusionGroup& g : spec.groups) {
     Inclusion proto = g.prototype;
     int copies = 1;
@@ -136,6 +138,16 @@ std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>
       for (int c = 0; c < copies; ++c) {
         bool ok = false;
         for (int a = 0; a < g.max_attempts && !ok; ++a) {
+          tests += std::max<std::int64_t>(1, static_cast<std::int64_t>(placed.size()));
+          if (tests > spec.max_overlap_tests)
+            groupError(spec, g,
+                       "random placement stopped at inclusion " + std::to_string(c + 1) + " of " +
+                           std::to_string(copies) + ", attempt " + std::to_string(a + 1) +
+                           ": the cell's placement reached its bound of " +
+                           std::to_string(spec.max_overlap_tests) +
+                           " overlap tests (attempts x inclusions placed); lower count, "
+                           "volume_fraction, min_gap or max_attempts, or use fewer, larger "
+                           "inclusions");
           Inclusion cand = proto;
           for (int i = 0; i < 3; ++i)
             cand.center[i] = u01(rng) * spec.size[i];

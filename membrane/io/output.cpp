@@ -46,6 +46,12 @@ FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& st
     throw Error("cannot continue the field series: the file is missing",
                 {h5_path_.string(), 0, ""});
   file_ = std::make_unique<core::H5File>(h5_path_, core::H5File::Mode::ReadWrite);
+  // Steps written after the checkpoint (a crash or kill between two
+  // checkpoints) are removed: the continued series holds only what an
+  // uninterrupted run writes, even if this run ends before rewriting them.
+  for (std::size_t k = times_.size(); file_->exists("/steps/" + std::to_string(k)); ++k)
+    file_->remove("/steps/" + std::to_string(k));
+  file_->flush();
   for (const auto& c : cells)
     cells_.emplace_back(c.name, c.components);
   writeIndex();

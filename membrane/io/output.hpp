@@ -39,8 +39,8 @@ public:
   void write(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
              const std::vector<CellField>& cells);
   /// Reopens the series DIR/<stem>.h5 of an earlier run for appending
-  /// after its first @p times.size() steps (later ones are overwritten by
-  /// the next writes and left out of the index), with the element-field
+  /// after its first @p times.size() steps (later ones, written after the
+  /// checkpoint, are removed), with the element-field
   /// layout @p cells of its steps; rewrites the index. Throws lamina::Error
   /// naming the file when it is missing or unreadable.
   FieldWriter(const std::filesystem::path& dir, const std::string& stem, const Mesh& mesh,

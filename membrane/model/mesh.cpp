@@ -3,10 +3,14 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/resources.hpp"
+#include "membrane/io/msh_check.hpp"
 
 #include <gmsh.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -188,9 +192,39 @@ struct GmshSession {
   }
   ~GmshSession() { gmsh::finalize(); }
 };
+
+/// Opens @p file with gmsh in a forked child first: gmsh trusts the file,
+/// and a crash of its reader on what checkMshFile let through must cost an
+/// Error, not the process. The child only opens the file and leaves with
+/// _exit; when fork itself fails the in-process read goes on (checked).
+void probeGmshInChild(const std::string& file) {
+  const pid_t pid = ::fork();
+  if (pid < 0)
+    return;
+  if (pid == 0) {
+    int code = 0;
+    try {
+      gmsh::initialize(0, nullptr, false);
+      gmsh::option::setNumber("General.Terminal", 0);
+      gmsh::option::setNumber("General.Verbosity", 0);
+      gmsh::open(file);
+    } catch (...) {
+      code = 1; // an exception is reported by the read in the parent
+    }
+    ::_exit(code);
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR)
+      return;
+  if (WIFSIGNALED(status))
+    throw Error("gmsh's reader crashed on " + file + " (signal " +
+                    std::to_string(WTERMSIG(status)) + ")",
+                ErrorContext{file, 0, ""});
+}
 } // namespace
 
-Mesh readGmsh(const std::filesystem::path& path) {
+Mesh readGmsh(const std::filesystem::path& path, GmshProbe probe) {
   const std::string file = path.string();
   if (!std::filesystem::exists(path))
     throw Error("mesh file not found", ErrorContext{file, 0, ""});
@@ -199,6 +233,11 @@ Mesh readGmsh(const std::filesystem::path& path) {
     throw Error("mesh file must be .msh or .geo, got '" + ext + "'", ErrorContext{file, 0, ""});
 
   std::lock_guard<std::mutex> lock(gmsh_mutex);
+  if (ext == ".msh") {
+    checkMshFile(path);
+    if (probe == GmshProbe::kChild)
+      probeGmshInChild(file);
+  }
   GmshSession session;
   Mesh m;
   m.source = file;

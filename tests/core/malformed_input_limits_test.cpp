@@ -22,16 +22,8 @@
 
 namespace core = lamina::core;
 using lamina::test::errorOf;
+using lamina::test::repeat;
 using lamina::test::TempDir;
-
-namespace {
-std::string repeat(const std::string& s, int n) {
-  std::string out;
-  for (int i = 0; i < n; ++i)
-    out += s;
-  return out;
-}
-} // namespace
 
 // The reproducer: a key of 50000 dots overflowed the stack inside
 // toml++. It is refused before parsing, naming the file and the line.

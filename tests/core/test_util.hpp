@@ -1,7 +1,8 @@
 #pragma once
 /// @file test_util.hpp
 /// @brief Helpers shared by the core and materials test suites: a temporary
-/// directory, whole-file reads and writes, and the message of a lamina::Error.
+/// directory, whole-file reads and writes, the message of a lamina::Error and
+/// repeated text (hostile-input tests of several stages include it).
 
 #include "core/error.hpp"
 
@@ -62,6 +63,15 @@ inline std::string errorOf(const std::function<void()>& f) {
     return e.what();
   }
   return "";
+}
+
+/// @return @p s repeated @p n times (deep nesting, long keys)
+inline std::string repeat(const std::string& s, int n) {
+  std::string out;
+  out.reserve(s.size() * static_cast<std::size_t>(n > 0 ? n : 0));
+  for (int i = 0; i < n; ++i)
+    out += s;
+  return out;
 }
 
 } // namespace lamina::test

@@ -12,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <csignal>
 #include <sys/wait.h>
 
@@ -166,12 +168,59 @@ TEST(Restart, RowsWrittenAfterTheLastCheckpointAreCutBack) {
     fs::rename(split.out_dir / f, split.out_dir / (std::string(f) + ".part"));
   const fs::path debris = split.out_dir / "checkpoint.h5.tmp.99999"; // died writing a checkpoint
   std::ofstream(debris) << "half a checkpoint";
+  // Field steps 0, 3, ..., 27 are /steps/0..9; the checkpoint at 20 holds
+  // 0..6. Continued only to step 22 (one field step, 21), the series must
+  // hold /steps/0..7 as an uninterrupted run stopped there does, not the
+  // orphans 8 and 9 (24, 27) of the crashed run.
+  split.stop_at_step = 22;
+  runModel(periodic, split);
+  {
+    const std::string index = lamina::test::slurp(split.out_dir / (model.name + ".xdmf"));
+    std::size_t listed = 0;
+    for (auto at = index.find("<Grid Name=\"step"); at != std::string::npos;
+         at = index.find("<Grid Name=\"step", at + 1))
+      ++listed;
+    EXPECT_EQ(listed, 8u);
+    const lamina::core::H5File h5(split.out_dir / (model.name + ".h5"),
+                                  lamina::core::H5File::Mode::ReadOnly);
+    EXPECT_TRUE(h5.exists("/steps/7"));
+    EXPECT_FALSE(h5.exists("/steps/8")) << "orphan field step of the crashed run";
+    EXPECT_FALSE(h5.exists("/steps/9")) << "orphan field step of the crashed run";
+  }
   split.stop_at_step = 0;
   runModel(periodic, split);
   test::expectSameOutputs(full.out_dir, split.out_dir, model.name);
   for (const auto& f : fs::directory_iterator(split.out_dir))
     EXPECT_NE(f.path().extension(), ".part") << f.path();
   EXPECT_FALSE(fs::exists(debris));
+}
+
+// The checkpoint records the OpenMP thread count: a restart with another
+// one continues (a warning, not an error) and says that bit identity is not
+// guaranteed; with the same count it says nothing.
+TEST(Restart, AnotherThreadCountIsWarnedAbout) {
+  const Model model = test::modelFromText(kLinear, "restart-threads.toml");
+  const test::Folder dir("restart-threads");
+  RunOptions opt;
+  opt.out_dir = dir.path / "run";
+  opt.quiet = true;
+  opt.stop_at_step = 4;
+  const int threads = omp_get_max_threads();
+  runModel(model, opt);
+  opt.restart = true;
+  opt.stop_at_step = 6;
+  ::testing::internal::CaptureStderr();
+  runModel(model, opt);
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "");
+  omp_set_num_threads(threads + 1);
+  opt.stop_at_step = 8;
+  ::testing::internal::CaptureStderr();
+  runModel(model, opt);
+  const std::string said = ::testing::internal::GetCapturedStderr();
+  omp_set_num_threads(threads);
+  EXPECT_NE(said.find("warning: " + checkpointPath(opt.out_dir).string()), std::string::npos)
+      << said;
+  EXPECT_NE(said.find("not guaranteed to be bit-identical"), std::string::npos) << said;
 }
 
 // The program stopped by SIGTERM mid-run (exit 143, checkpoint written on the

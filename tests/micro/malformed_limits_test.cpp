@@ -72,4 +72,26 @@ TEST(MalformedLimits, InclusionCountsAreBounded) {
                 {"inclusions[0].max_attempts"});
 }
 
+// Random placement has a work bound (overlap tests, attempts x inclusions
+// placed): an unplaceable cell at the largest count and attempts took
+// hours. The bound is lowered here (no key sets it) so that reaching it
+// takes a fraction of a second: 300 spheres of radius 0.1 hold 1.26 times
+// the cell's volume, random sequential placement jams near 38 % (about 90
+// of them), and every attempt after that tests all those placed, until the
+// bound of 1e6 tests (the 1e6 attempts allowed per sphere would be ~1e8).
+TEST(MalformedLimits, RandomPlacementStopsAtItsWorkBound) {
+  CellSpec spec = readCellString(cell("8", "radius = 0.1\nplacement = \"random\"\n"
+                                           "count = 300\nmax_attempts = 1000000\n"),
+                                 "bad.toml", lazyCatalog());
+  EXPECT_EQ(spec.max_overlap_tests, kMaxOverlapTests);
+  spec.max_overlap_tests = 1000000;
+  std::string msg;
+  try {
+    buildCell(spec);
+  } catch (const Error& e) {
+    msg = e.what();
+  }
+  expectRefused(msg, {"inclusions[0]", "1000000 overlap tests", "random placement stopped"});
+}
+
 } // namespace lamina::micro

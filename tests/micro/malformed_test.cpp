@@ -99,6 +99,16 @@ TEST(MalformedCell, InclusionsThatDoNotFit) {
               "inclusions[0]", "random placement failed");
 }
 
+// composite_voxels is a boolean: a string or an integer (also 0 and 1) is
+// refused naming the key, not read as true.
+TEST(MalformedCell, CompositeVoxelsMustBeABoolean) {
+  const std::string head = kHead.substr(0, kHead.find("[[phases]]"));
+  const std::string phases = kHead.substr(kHead.find("[[phases]]"));
+  for (const std::string bad : {"\"yes\"", "1", "0", "[true]"})
+    expectError(head + "composite_voxels = " + bad + "\n" + phases, "cell.composite_voxels",
+                "expected true or false");
+}
+
 TEST(MalformedCell, MissingCatalogEntry) {
   expectError("[cell]\nresolution = 8\n[[phases]]\nname = \"m\"\ncatalog = \"unobtainium\"\n",
               "catalog", "unobtainium");

@@ -4,6 +4,7 @@
 /// a half-written output folder; now each gives a clean error naming the
 /// cause, or (for a signal) complete outputs and the shell's exit code.
 
+#include "../core/test_util.hpp"
 #include "core/hdf5_file.hpp"
 #include "program.hpp"
 
@@ -31,13 +32,6 @@ protected:
   std::string bin(const std::string& program) const { return (kBin / program).string(); }
   fs::path dir_;
 };
-
-std::string repeat(const std::string& s, int n) {
-  std::string out;
-  for (int i = 0; i < n; ++i)
-    out += s;
-  return out;
-}
 
 } // namespace
 
