@@ -114,6 +114,34 @@ double positive(const core::TableReader& t, const std::string& key) {
   return v;
 }
 
+/// The keys of a yarn (docs/homogenize.md): direction (an axis), crimp (the
+/// axis it undulates along, default z), width, thickness, amplitude
+/// (default 0), wavelength (default the cell length along direction; must
+/// divide it, so the yarn is periodic).
+void readYarn(const core::TableReader& t, const CellSpec& cell, Inclusion& p) {
+  p.width = positive(t, "width");
+  p.thickness = positive(t, "thickness");
+  p.setLattice(readLattice(t, "direction"));
+  if (p.axis < 0)
+    t.fail("direction", "a yarn runs along a cell axis: \"x\", \"y\" or \"z\"");
+  p.crimp = t.getChoice("crimp", {{"x", 0}, {"y", 1}, {"z", 2}}, p.axis == 2 ? -1 : 2);
+  if (p.crimp < 0)
+    t.fail("crimp", "required for a yarn along z: the axis it undulates along, \"x\" or \"y\"");
+  if (p.crimp == p.axis)
+    t.fail("crimp", "must differ from the yarn's direction");
+  p.amplitude = t.getDouble("amplitude", 0.0);
+  if (!(p.amplitude >= 0) || !std::isfinite(p.amplitude))
+    t.fail("amplitude",
+           "must not be negative (shift center along the yarn for the opposite phase)");
+  const double La = cell.size[p.axis];
+  p.wavelength = t.has("wavelength") ? positive(t, "wavelength") : La;
+  const double periods = La / p.wavelength;
+  if (!(periods >= 1) || std::abs(periods - std::round(periods)) > 1e-9 * periods)
+    t.fail("wavelength", "must divide the cell length along the yarn (" + core::formatShort(La) +
+                             "): the yarn must be periodic; got " + core::formatShort(periods) +
+                             " periods per cell");
+}
+
 InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::size_t index) {
   InclusionGroup g;
   g.key = "inclusions[" + std::to_string(index) + "]";
@@ -124,9 +152,15 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
     t.fail("phase", "no phase named '" + phase + "'");
   if (p.phase == 0)
     t.fail("phase", "inclusions cannot be made of the matrix (the first phase)");
-  const std::string shape = t.getString("shape");
-  if (!parseShape(shape, p.shape))
-    t.fail("shape", "unknown shape '" + shape + "' (sphere, ellipsoid, fiber, layer)");
+  if (!t.has("shape"))
+    t.fail("shape", "required: sphere, ellipsoid, fiber, layer or yarn");
+  p.shape = t.getChoice("shape",
+                        {{"sphere", Shape::Sphere},
+                         {"ellipsoid", Shape::Ellipsoid},
+                         {"fiber", Shape::Fiber},
+                         {"layer", Shape::Layer},
+                         {"yarn", Shape::Yarn}},
+                        Shape::Sphere);
   switch (p.shape) {
   case Shape::Sphere:
     p.semi.setConstant(positive(t, "radius"));
@@ -151,6 +185,9 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
   case Shape::Layer:
     p.thickness = positive(t, "thickness");
     p.setLattice(readLattice(t, "normal"));
+    break;
+  case Shape::Yarn:
+    readYarn(t, cell, p);
     break;
   }
   g.placement = t.getChoice("placement",
@@ -180,6 +217,8 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
     break;
   }
   case Placement::Random:
+    if (p.shape == Shape::Yarn)
+      t.fail("placement", "yarns are placed with single (center) or lattice");
     g.seed = static_cast<std::uint64_t>(t.getInt("seed", 1));
     g.max_attempts = static_cast<int>(t.getIntIn("max_attempts", 1, kMaxAttempts, 200000));
     break;

@@ -99,23 +99,32 @@ int convexLine(const In& in, int& lo, int& hi) {
 
 /// Fraction of the curved inclusion @p inc in the voxel of lower corner
 /// @p corner and edges @p h, counted on kSubSamples^3 points; -1 when its 8
-/// corners lie on one side (not cut). With @p nearestCopy (an oblique fibre
-/// whose copies are more than 2 r + |h| apart) only the copy of the axis
-/// nearest the voxel centre is tested: a copy holding a point of the voxel
-/// passes within r + |h|/2 of the centre, and any other copy then lies
-/// farther than that (the copies are a spacing apart), so the answer is the
-/// same while the search over the periodic copies runs once per voxel.
+/// corners lie on one side (not cut). An oblique fibre is tested only
+/// against the copies of its axis that pass within r + |h|/2 of the voxel
+/// centre, listed once per voxel (a copy holding a point of the voxel
+/// passes that close): the same answer as contains(), without a search
+/// over the periodic copies per sub-sample.
 double sampledFraction(const Inclusion& inc, const Eigen::Vector3d& corner,
-                       const Eigen::Vector3d& h, const Eigen::Vector3d& L, bool nearestCopy) {
+                       const Eigen::Vector3d& h, const Eigen::Vector3d& L) {
   const Eigen::Vector3d centre = corner + 0.5 * h;
+  const bool oblique = inc.shape == Shape::Fiber && inc.axis < 0;
   const Eigen::Vector3d dir = inc.unitDirection(L);
-  const Eigen::Vector3d foot =
-      nearestCopy ? Eigen::Vector3d(centre - inc.axisOffset(centre, L)) : Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> feet;
+  if (oblique) {
+    for (const Eigen::Vector3d& off : inc.axisOffsetsWithin(centre, inc.radius + 0.5 * h.norm(), L))
+      feet.push_back(centre - off);
+    if (feet.empty())
+      return -1; // no copy comes near: the voxel is outside
+  }
   auto inside = [&](const Eigen::Vector3d& x) {
-    if (!nearestCopy)
+    if (!oblique)
       return inc.contains(x, L);
-    const Eigen::Vector3d v = x - foot;
-    return (v - v.dot(dir) * dir).squaredNorm() <= inc.radius * inc.radius;
+    for (const Eigen::Vector3d& foot : feet) {
+      const Eigen::Vector3d v = x - foot;
+      if ((v - v.dot(dir) * dir).squaredNorm() <= inc.radius * inc.radius)
+        return true;
+    }
+    return false;
   };
   int in = 0;
   for (int c = 0; c < 8; ++c)
@@ -207,8 +216,6 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
   std::unordered_map<std::size_t, std::vector<std::pair<int, double>>> cut;
   for (std::size_t q = 0; q < inclusions.size(); ++q) {
     const Inclusion& inc = inclusions[q];
-    const bool nearestCopy = inc.shape == Shape::Fiber && inc.axis < 0 &&
-                             inc.periodicSpacing(size) > 2 * inc.radius + h.norm();
     std::array<int, 3> lo{}, hi{};
     voxelRange(inc, n, size, lo, hi);
     std::vector<std::pair<std::size_t, double>> found;
@@ -227,7 +234,7 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
               if ((f == 0 && !centre) || (f == 1 && centre))
                 continue; // whole voxel on the side its centre sampled
             } else {
-              f = sampledFraction(inc, corner, h, size, nearestCopy);
+              f = sampledFraction(inc, corner, h, size);
               if (f < 0)
                 continue;
             }
@@ -246,10 +253,27 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
   }
   std::vector<CompositeVoxel> out;
   for (const auto& [idx, list] : cut) {
-    if (list.size() != 1)
-      continue; // cut by two inclusions: keep the centre's phase
-    const Inclusion& inc = inclusions[static_cast<std::size_t>(list[0].first)];
-    const double f = list[0].second;
+    // Inclusions never overlap, so the fractions of several inclusions of
+    // one phase in a voxel add up (two crossing yarns, neighbouring
+    // spheres); the normal is that of the interface nearest to halving the
+    // voxel (a yarn-matrix-yarn sandwich has one normal up to its sign, to
+    // which the laminate is blind). Inclusions of different phases: three
+    // phases in one voxel, keep the centre's phase.
+    std::size_t lead = 0;
+    double f = 0;
+    bool onePhase = true;
+    for (std::size_t q = 0; q < list.size(); ++q) {
+      const auto& [which, fq] = list[q];
+      onePhase = onePhase && inclusions[static_cast<std::size_t>(which)].phase ==
+                                 inclusions[static_cast<std::size_t>(list[0].first)].phase;
+      f += fq;
+      if (std::min(fq, 1 - fq) > std::min(list[lead].second, 1 - list[lead].second))
+        lead = q;
+    }
+    if (!onePhase)
+      continue;
+    f = std::min(f, 1.0);
+    const Inclusion& inc = inclusions[static_cast<std::size_t>(list[lead].first)];
     if (f == 0 || f == 1) { // corners differ but every sub-sample agrees
       phase[idx] = f == 1 ? inc.phase : 0;
       continue;

@@ -7,20 +7,6 @@
 
 namespace lamina::micro {
 
-bool parseShape(const std::string& w, Shape& out) {
-  if (w == "sphere")
-    out = Shape::Sphere;
-  else if (w == "ellipsoid")
-    out = Shape::Ellipsoid;
-  else if (w == "fiber")
-    out = Shape::Fiber;
-  else if (w == "layer")
-    out = Shape::Layer;
-  else
-    return false;
-  return true;
-}
-
 std::string toString(Shape s) {
   switch (s) {
   case Shape::Sphere:
@@ -31,6 +17,8 @@ std::string toString(Shape s) {
     return "fiber";
   case Shape::Layer:
     return "layer";
+  case Shape::Yarn:
+    return "yarn";
   }
   return "?";
 }
@@ -47,25 +35,123 @@ int gcd3(const Eigen::Vector3i& m) {
   return std::gcd(std::gcd(std::abs(m[0]), std::abs(m[1])), std::abs(m[2]));
 }
 
-/// Oblique fiber: the offset from the nearest copy of the axis line (through
-/// centre + lattice translations) to the point d (relative to the centre,
-/// nearest image). A line through a translation T is the same line as
-/// through T + A (A the fiber's lattice vector), so the copies within
-/// |u_i|/2 + 1 cells along each axis cover every line that can come within
-/// half a cell of d.
+/// Oblique fiber: visits the copies of the axis line (through centre +
+/// lattice translations T, direction A = (u Lx, v Ly, w Lz)) that may pass
+/// within sqrt(bound()) of the point d (relative to the centre, nearest
+/// image), calling visit(offset) with the offset of d from each (normal to
+/// the axis). Every copy crosses the plane x_a = d_a (a: the largest
+/// component of A); modulo A the copies are T = n L_a e_a + j L_b e_b +
+/// k L_c e_c with 0 <= n < |m_a|. The squared distance Q(o) = |o|^2 -
+/// (o.dir)^2 of the in-plane offset o is a convex parabola in o_b for fixed
+/// o_c (minimum at o_b* = slope o_c), and Q >= dir_a^2 o_c^2 bounds the k to
+/// visit: |m_a| x (a few) copies instead of every copy in a block of cells.
+/// bound() is read again after each visit (a shrinking nearest distance).
+template <class Bound, class Visit>
+void visitFiberCopies(const Eigen::Vector3d& d, const Eigen::Vector3d& dir,
+                      const Eigen::Vector3i& m, const Eigen::Vector3d& L, Bound bound,
+                      Visit visit) {
+  const Eigen::Vector3d A(m[0] * L[0], m[1] * L[1], m[2] * L[2]);
+  int a = 0;
+  A.cwiseAbs().maxCoeff(&a);
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
+  const double wa2 = dir[a] * dir[a], wb2 = 1 - dir[b] * dir[b];
+  const double slope = dir[b] * dir[c] / wb2;
+  for (int n = 0; n < std::abs(m[a]); ++n) {
+    const double t = (d[a] - n * L[a]) / A[a]; // the copy through n L_a e_a meets x_a = d_a
+    const double rb = d[b] - t * A[b], rc = d[c] - t * A[c];
+    const double k0 = std::round(rc / L[c]);
+    for (int s = 0; wa2 * std::pow(std::max(0.0, s - 0.5) * L[c], 2) <= bound(); ++s)
+      for (const int sign : {1, -1}) {
+        if (s == 0 && sign < 0)
+          continue;
+        const double oc = rc - (k0 + sign * s) * L[c];
+        Eigen::Vector3d o = Eigen::Vector3d::Zero();
+        o[c] = oc;
+        o[b] = slope * oc; // the parabola's minimum over o_b
+        const double qmin = (o - o.dot(dir) * dir).squaredNorm();
+        const double jc = (rb - o[b]) / L[b];
+        // j with (1 - dir_b^2) (o_b - o_b*)^2 <= bound - qmin, at least the nearest
+        // (no finite bound yet: the nearest j only)
+        const double room = bound() - qmin;
+        const double half = room < std::numeric_limits<double>::max() / 4
+                                ? std::sqrt(std::max(0.0, room) / wb2) / L[b]
+                                : 0;
+        const double jlo = std::min(std::ceil(jc - half), std::round(jc));
+        const double jhi = std::max(std::floor(jc + half), std::round(jc));
+        for (double j = jlo; j <= jhi; ++j) {
+          o[b] = rb - j * L[b];
+          visit(Eigen::Vector3d(o - o.dot(dir) * dir));
+        }
+      }
+  }
+}
+
+/// Oblique fiber: the offset of d from the nearest copy of the axis
+/// (visitFiberCopies with the nearest distance so far as the bound).
 Eigen::Vector3d offsetFromFiber(const Eigen::Vector3d& d, const Eigen::Vector3d& dir,
                                 const Eigen::Vector3i& m, const Eigen::Vector3d& L) {
   Eigen::Vector3d best = Eigen::Vector3d::Constant(std::numeric_limits<double>::max());
-  const int K0 = std::abs(m[0]) / 2 + 1, K1 = std::abs(m[1]) / 2 + 1, K2 = std::abs(m[2]) / 2 + 1;
-  for (int a = -K0; a <= K0; ++a)
-    for (int b = -K1; b <= K1; ++b)
-      for (int c = -K2; c <= K2; ++c) {
-        const Eigen::Vector3d q = d + Eigen::Vector3d(a * L[0], b * L[1], c * L[2]);
-        const Eigen::Vector3d perp = q - q.dot(dir) * dir;
-        if (perp.squaredNorm() < best.squaredNorm())
-          best = perp;
-      }
+  double bestQ = std::numeric_limits<double>::max();
+  visitFiberCopies(
+      d, dir, m, L, [&] { return bestQ; },
+      [&](const Eigen::Vector3d& off) {
+        if (off.squaredNorm() < bestQ) {
+          bestQ = off.squaredNorm();
+          best = off;
+        }
+      });
   return best;
+}
+
+/// Yarn: the nearest point of the centre line x_c = A sin(k x_a) (relative
+/// to the centre) to (s, z) in the axis-crimp plane, searched on
+/// [s - r, s + r]: Newton on the foot condition
+/// g(x) = (s - x) + (z - A sin kx) A k cos kx = 0 from x = s (the foot of a
+/// point within the curvature radius, where the squared distance is convex),
+/// else the best of a scan of the interval.
+/// @return the foot's x_a
+double yarnFoot(double A, double k, double s, double z, double r) {
+  if (A == 0)
+    return s;
+  auto dist2 = [&](double x) { return (s - x) * (s - x) + std::pow(z - A * std::sin(k * x), 2); };
+  auto newton = [&](double x, double& f) {
+    for (int it = 0; it < 20; ++it) {
+      const double sn = std::sin(k * x), cs = std::cos(k * x);
+      const double g = (s - x) + (z - A * sn) * A * k * cs;
+      const double dg = -1 - A * A * k * k * cs * cs - (z - A * sn) * A * k * k * sn;
+      if (!(dg < 0))
+        return false; // not convex here
+      const double xn = std::clamp(x - g / dg, s - r, s + r);
+      const double step = std::abs(xn - x);
+      x = xn;
+      // the distance is stationary at the foot: an error dx in x moves it
+      // by O(dx^2), so a step of 1e-9 r (the error after it ~1e-18 r) is
+      // far inside round-off of the distance
+      if (step <= 1e-9 * r) {
+        f = x;
+        return true;
+      }
+    }
+    return false;
+  };
+  double x = s;
+  if (newton(s, x))
+    return x;
+  constexpr int kScan = 16;
+  double f = dist2(s);
+  x = s;
+  for (int i = 0; i <= kScan; ++i) {
+    const double xi = s - r + 2 * r * i / kScan;
+    const double fi = dist2(xi);
+    if (fi < f) {
+      x = xi;
+      f = fi;
+    }
+  }
+  double xn = x;
+  if (newton(x, xn) && dist2(xn) < f)
+    return xn;
+  return x;
 }
 
 /// Layer: the reciprocal vector G = (h/L_x, k/L_y, l/L_z); the slab is where
@@ -75,6 +161,53 @@ Eigen::Vector3d reciprocal(const Eigen::Vector3i& m, const Eigen::Vector3d& L) {
 }
 
 } // namespace
+
+YarnFrame yarnFrame(const Inclusion& inc, const Eigen::Vector3d& d) {
+  YarnFrame f;
+  const int a = inc.axis, c = inc.crimp;
+  f.width_axis = 3 - a - c;
+  const double A = inc.amplitude, k = 2 * M_PI / inc.wavelength;
+  const double s = d[a], z = d[c];
+  const double x = yarnFoot(A, k, s, z, 0.5 * inc.thickness);
+  const double slope = A * k * std::cos(k * x); // dx_c / dx_a at the foot
+  const double norm = std::sqrt(1 + slope * slope);
+  f.normal[a] = -slope / norm;
+  f.normal[c] = 1 / norm;
+  f.u = d[f.width_axis];
+  if (A == 0) {
+    f.v = z;
+  } else {
+    // distance to the foot (never below the distance to the centre line),
+    // signed by the side of the normal
+    const double ra = s - x, rc = z - A * std::sin(k * x);
+    const double side = -ra * slope + rc;
+    f.v = std::copysign(std::sqrt(ra * ra + rc * rc), side);
+  }
+  return f;
+}
+
+double Inclusion::pathLength(const Eigen::Vector3d& L) const {
+  const double periods = L[axis] / wavelength;
+  if (amplitude == 0)
+    return L[axis];
+  // trapezoid rule over one period of sqrt(1 + (A k cos kx)^2): exponentially
+  // accurate for a smooth periodic integrand
+  constexpr int kPoints = 512;
+  const double k = 2 * M_PI / wavelength, Ak = amplitude * k;
+  double sum = 0;
+  for (int i = 0; i < kPoints; ++i) {
+    const double cs = std::cos(2 * M_PI * i / kPoints);
+    sum += std::sqrt(1 + Ak * Ak * cs * cs);
+  }
+  return periods * wavelength * sum / kPoints;
+}
+
+double Inclusion::minCurvatureRadius() const {
+  if (amplitude == 0)
+    return std::numeric_limits<double>::infinity();
+  const double k = 2 * M_PI / wavelength;
+  return 1 / (amplitude * k * k);
+}
 
 void Inclusion::setLattice(const Eigen::Vector3i& m) {
   const int g = gcd3(m);
@@ -98,6 +231,26 @@ Eigen::Vector3d Inclusion::axisOffset(const Eigen::Vector3d& p, const Eigen::Vec
   Eigen::Vector3d off = d;
   off[axis] = 0;
   return off;
+}
+
+std::vector<Eigen::Vector3d> Inclusion::axisOffsetsWithin(const Eigen::Vector3d& p, double R,
+                                                          const Eigen::Vector3d& L) const {
+  const Eigen::Vector3d d = nearestImage(p - center, L);
+  std::vector<Eigen::Vector3d> out;
+  if (axis >= 0) {
+    Eigen::Vector3d off = d;
+    off[axis] = 0;
+    if (off.squaredNorm() <= R * R)
+      out.push_back(off);
+    return out;
+  }
+  visitFiberCopies(
+      d, unitDirection(L), lattice, L, [&] { return R * R; },
+      [&](const Eigen::Vector3d& off) {
+        if (off.squaredNorm() <= R * R)
+          out.push_back(off);
+      });
+  return out;
 }
 
 double Inclusion::periodicSpacing(const Eigen::Vector3d& L) const {
@@ -137,6 +290,15 @@ Eigen::Vector3d Inclusion::normalAt(const Eigen::Vector3d& p, const Eigen::Vecto
     s -= std::round(s);
     return (s >= 0 ? 1.0 : -1.0) * unitDirection(L);
   }
+  case Shape::Yarn: {
+    // gradient of (u / (w/2))^2 + (v / (t/2))^2 in the tube coordinates
+    // (grad u = e_w, grad v = the path normal), scaled by (t/2)^2
+    const YarnFrame f = yarnFrame(*this, d);
+    const double q = thickness / width;
+    Eigen::Vector3d g = f.v * f.normal;
+    g[f.width_axis] += f.u * q * q;
+    return g.norm() > 0 ? g.normalized() : f.normal;
+  }
   }
   return Eigen::Vector3d::UnitX();
 }
@@ -166,6 +328,29 @@ bool Inclusion::contains(const Eigen::Vector3d& p, const Eigen::Vector3d& L) con
     s -= std::round(s);
     return std::abs(s) / G.norm() <= 0.5 * thickness;
   }
+  case Shape::Yarn: {
+    // (u / (w/2))^2 + (v / (t/2))^2 <= 1, written as u^2 (t/w)^2 + v^2 <=
+    // (t/2)^2: for w = t and A = 0 the very sum a fibre of radius t/2 tests
+    const int w = 3 - axis - crimp;
+    const double q = thickness / width, t2 = 0.25 * thickness * thickness;
+    const double uu = d[w] * d[w] * (q * q);
+    if (uu > t2 || std::abs(d[crimp]) > amplitude + 0.5 * thickness)
+      return false; // beyond the width or the crimp band
+    if (amplitude > 0) {
+      // e: distance to the centre-line point straight along the crimp axis.
+      // |v| (the distance to the nearest one) <= e, so uu + e^2 <= (t/2)^2
+      // proves inside; inside, the foot lies within |v| of s along the axis,
+      // so e <= |v| + A k |v| <= (1 + A k) t/2, and a larger e proves outside.
+      const double k = 2 * M_PI / wavelength;
+      const double e = std::abs(d[crimp] - amplitude * std::sin(k * d[axis]));
+      if (uu + e * e <= t2)
+        return true;
+      if (e > (1 + amplitude * k) * 0.5 * thickness)
+        return false;
+    }
+    const YarnFrame f = yarnFrame(*this, d);
+    return uu + f.v * f.v <= t2;
+  }
   }
   return false;
 }
@@ -180,6 +365,11 @@ double Inclusion::volume(const Eigen::Vector3d& L) const {
            Eigen::Vector3d(lattice[0] * L[0], lattice[1] * L[1], lattice[2] * L[2]).norm();
   case Shape::Layer: // one slab per plane spacing 1/|G|
     return thickness * L.prod() * reciprocal(lattice, L).norm();
+  case Shape::Yarn:
+    // a section swept in the normal planes of a plane curve, centroid on the
+    // curve, no self-overlap (t/2 below the curvature radius): the section
+    // area times the arc length (the first moment int v dA vanishes)
+    return M_PI * 0.25 * width * thickness * pathLength(L);
   }
   return 0;
 }
@@ -204,6 +394,11 @@ Eigen::Vector3d Inclusion::halfExtent(const Eigen::Vector3d& L) const {
     if (axis >= 0)
       e[axis] = 0.5 * thickness;
     return e;
+  case Shape::Yarn:
+    e[axis] = 0.5 * L[axis];
+    e[crimp] = amplitude + 0.5 * thickness; // the section tilts: |n_c| <= 1
+    e[3 - axis - crimp] = 0.5 * width;
+    return e;
   }
   return Eigen::Vector3d::Zero();
 }
@@ -212,10 +407,11 @@ void Inclusion::scale(double s) {
   semi *= s;
   radius *= s;
   thickness *= s;
+  width *= s; // a yarn's centre line (amplitude, wavelength) stays
 }
 
 int Inclusion::dimension() const {
-  return shape == Shape::Fiber ? 2 : shape == Shape::Layer ? 1 : 3;
+  return shape == Shape::Fiber || shape == Shape::Yarn ? 2 : shape == Shape::Layer ? 1 : 3;
 }
 
 namespace {
@@ -261,6 +457,42 @@ bool ellipsoidsOverlap(const Inclusion& a, const Inclusion& b, double gap,
   return std::max(f1, f2) < 1;
 }
 
+/// Yarns: whether a point of the surface of @p a lies inside @p b (both
+/// already grown), sampled on kYarnSamplesAlong points along the cell
+/// length times kYarnSamplesAround around the section. Two solids that
+/// intersect have a part of the boundary of one inside the other, so
+/// testing both ways finds every overlap deeper than the sampling spacing.
+bool yarnSurfaceEnters(const Inclusion& a, const Inclusion& b, const Eigen::Vector3d& L) {
+  constexpr int kYarnSamplesAlong = 512, kYarnSamplesAround = 48;
+  const int w = 3 - a.axis - a.crimp;
+  const double k = 2 * M_PI / a.wavelength;
+  for (int i = 0; i < kYarnSamplesAlong; ++i) {
+    const double x = L[a.axis] * i / kYarnSamplesAlong;
+    const double slope = a.amplitude * k * std::cos(k * x);
+    Eigen::Vector3d n = Eigen::Vector3d::Zero(), c = a.center;
+    n[a.axis] = -slope;
+    n[a.crimp] = 1;
+    n /= std::sqrt(1 + slope * slope);
+    c[a.axis] += x;
+    c[a.crimp] += a.amplitude * std::sin(k * x);
+    for (int j = 0; j < kYarnSamplesAround; ++j) {
+      const double th = 2 * M_PI * j / kYarnSamplesAround;
+      Eigen::Vector3d p = c + 0.5 * a.thickness * std::sin(th) * n;
+      p[w] += 0.5 * a.width * std::cos(th);
+      if (b.contains(p, L))
+        return true;
+    }
+  }
+  return false;
+}
+
+/// @return @p y grown by @p g on every side of its section
+Inclusion grownYarn(Inclusion y, double g) {
+  y.width += 2 * g;
+  y.thickness += 2 * g;
+  return y;
+}
+
 } // namespace
 
 bool overlaps(const Inclusion& a, const Inclusion& b, double gap, const Eigen::Vector3d& L) {
@@ -278,6 +510,10 @@ bool overlaps(const Inclusion& a, const Inclusion& b, double gap, const Eigen::V
             return true;
         }
     return false;
+  }
+  if (a.shape == Shape::Yarn && b.shape == Shape::Yarn) {
+    const Inclusion ga = grownYarn(a, 0.5 * gap), gb = grownYarn(b, 0.5 * gap);
+    return yarnSurfaceEnters(ga, gb, L) || yarnSurfaceEnters(gb, ga, L);
   }
   if (a.shape == Shape::Fiber && b.shape == Shape::Fiber && (a.axis < 0 || b.axis < 0)) {
     if (a.lattice != b.lattice && a.lattice != -b.lattice)

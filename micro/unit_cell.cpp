@@ -48,14 +48,26 @@ void checkFits(const CellSpec& spec, const InclusionGroup& g, const Inclusion& i
                      "): lower its size or volume_fraction");
     return;
   }
+  if (inc.shape == Shape::Yarn && !(0.5 * (inc.thickness + g.min_gap) < inc.minCurvatureRadius()))
+    groupError(spec, g,
+               "half the yarn's thickness (with min_gap) exceeds the smallest radius of "
+               "curvature of its path (1 / (A k^2) = " +
+                   std::to_string(inc.minCurvatureRadius()) +
+                   "): the swept section would fold over itself; lower thickness or amplitude, "
+                   "or raise wavelength");
   const Eigen::Vector3d e = inc.halfExtent(spec.size);
   for (int i = 0; i < 3; ++i) {
-    const bool unbounded = (inc.shape == Shape::Fiber && i == inc.axis) ||
-                           (inc.shape == Shape::Layer && i != inc.axis);
+    const bool unbounded =
+        ((inc.shape == Shape::Fiber || inc.shape == Shape::Yarn) && i == inc.axis) ||
+        (inc.shape == Shape::Layer && i != inc.axis);
     if (!unbounded && 2 * e[i] + g.min_gap >= spec.size[i])
       groupError(spec, g,
                  "inclusion (with min_gap) does not fit in the cell along axis " +
-                     std::string(1, "xyz"[i]) + ": lower its size or volume_fraction");
+                     std::string(1, "xyz"[i]) +
+                     (inc.shape == Shape::Yarn && i == inc.crimp
+                          ? " (a yarn spans 2 amplitude + thickness along its crimp axis)"
+                          : "") +
+                     ": lower its size or volume_fraction");
   }
 }
 
