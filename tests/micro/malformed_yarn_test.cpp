@@ -75,5 +75,17 @@ TEST(MalformedYarn, BadDirectionCrimpAndAmplitude) {
   expectError(kHead + yarn(kWarp + "radius = 0.1"), "radius", "");
 }
 
+TEST(MalformedYarn, NonFiniteAndHugeSizesAreRefused) {
+  // NaN and infinity never reach the geometry: the reader names the key
+  expectError(kHead + yarn("direction = \"x\"\nwidth = nan\nthickness = 0.1"), "width", "finite");
+  expectError(kHead + yarn(kWarp + "amplitude = inf"), "amplitude", "finite");
+  expectError(kHead + yarn(kWarp + "wavelength = nan"), "wavelength", "finite");
+  // a huge wavelength is a vanishing number of periods per cell, a huge width
+  // does not fit: both refused, not overflowed
+  expectError(kHead + yarn(kWarp + "amplitude = 0.1\nwavelength = 1e300"), "wavelength", "divide");
+  expectError(kHead + yarn("direction = \"x\"\nwidth = 1e300\nthickness = 0.1"), "inclusions[0]",
+              "along axis y");
+}
+
 } // namespace
 } // namespace lamina::micro
