@@ -12,6 +12,11 @@ FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
 # the targets scripts/fuzz.sh runs (all five by default)
 FUZZ_TARGETS ?= case cell catalog library msh
+# libFuzzer's -seed (0: its own pick, exploring) and the inputs per target
+# ("case=N cell=N ..."; empty: until FUZZ_SECONDS). CI fixes both so that its
+# run repeats one that passed here (.ci/run, docs/reliability.md).
+FUZZ_SEED ?= 0
+FUZZ_RUNS ?=
 # Any sanitizer report (ASan, LeakSanitizer, UBSan) fails the test or stops
 # the fuzzer, with a symbolized stack (llvm-symbolizer, Debian package llvm).
 SAN_ENV = ASAN_OPTIONS=halt_on_error=1:abort_on_error=1:detect_leaks=1:strict_string_checks=1 \
@@ -55,7 +60,8 @@ fuzz: deps
 	  -DLAMINA_FUZZ=ON -DLAMINA_BUILD_TESTS=OFF -DLAMINA_MPI=OFF $(CMAKE_FLAGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target case_fuzzer cell_fuzzer catalog_fuzzer \
 	  library_fuzzer msh_fuzzer
-	$(SAN_ENV) FUZZ_TARGETS='$(FUZZ_TARGETS)' bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
+	$(SAN_ENV) FUZZ_TARGETS='$(FUZZ_TARGETS)' FUZZ_SEED='$(FUZZ_SEED)' FUZZ_RUNS='$(FUZZ_RUNS)' \
+	  bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 
 demo: build
 	bash scripts/demo.sh $(BUILD)

@@ -43,6 +43,11 @@ Material makeLayup(const std::string& name, const std::vector<Ply>& plies,
     if (!(p.thickness > 0) || !std::isfinite(p.thickness))
       throw Error("ply thickness must be positive (m), got " + core::formatShort(p.thickness),
                   {"", 0, name + ": ply " + p.material});
+    if (!(std::abs(p.angle_deg) <= kMaxPlyAngleDeg))
+      throw Error("ply angle must be within -" + core::formatShort(kMaxPlyAngleDeg) + " to " +
+                      core::formatShort(kMaxPlyAngleDeg) + " degrees, got " +
+                      core::formatShort(p.angle_deg),
+                  {"", 0, name + ": ply " + p.material});
     h += p.thickness;
   }
   Matrix6 sum = Matrix6::Zero(), dispersion = Matrix6::Zero();

@@ -18,12 +18,16 @@ namespace lamina::materials {
 /// Looks a ply material up by name (library first, then catalog, for instance).
 using MaterialLookup = std::function<Material(const std::string&)>;
 
+/// Largest ply angle accepted, in degrees either way (one full turn: -45
+/// and 315 name the same ply; beyond a turn an angle is a typing error).
+inline constexpr double kMaxPlyAngleDeg = 360.0;
+
 /// Parses "MATERIAL:ANGLE_DEG:THICKNESS_M"; throws lamina::Error on bad text.
 Ply parsePly(const std::string& text);
 
 /// Builds the layup entry @p name (kind "layup") from @p plies. Throws
-/// lamina::Error for an empty stack, a non-positive thickness or an unknown
-/// ply material.
+/// lamina::Error for an empty stack, a non-positive thickness, an angle
+/// beyond kMaxPlyAngleDeg or an unknown ply material.
 Material makeLayup(const std::string& name, const std::vector<Ply>& plies,
                    const MaterialLookup& lookup);
 

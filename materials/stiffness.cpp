@@ -141,10 +141,14 @@ Eigen::Matrix3d axisRotation(int axis, double radians) {
 
 Eigen::Matrix3d axisRotationDegrees(int axis, double degrees) {
   // Multiples of 90 degrees get exact cosines and sines, so that [0/90]
-  // layups and 90-degree symmetry checks carry no 1e-16 residue.
-  const double quarterTurns = degrees / 90.0;
+  // layups and 90-degree symmetry checks carry no 1e-16 residue. The angle
+  // is first reduced to (-360, 360) (fmod is exact), so that the quarter
+  // turns fit an int whatever the angle (a ply angle of 1e20 degrees
+  // overflowed the cast); a NaN or infinite angle falls through to a NaN
+  // rotation, which the readers refuse earlier.
+  const double quarterTurns = std::fmod(degrees, 360.0) / 90.0;
   if (quarterTurns == std::round(quarterTurns)) {
-    const int k = ((static_cast<int>(std::round(quarterTurns)) % 4) + 4) % 4;
+    const int k = ((static_cast<int>(quarterTurns) % 4) + 4) % 4;
     const double c[4] = {1, 0, -1, 0}, s[4] = {0, 1, 0, -1};
     Eigen::Matrix3d r = Eigen::Matrix3d::Identity();
     const int a = (axis + 1) % 3, b = (axis + 2) % 3;

@@ -3,11 +3,27 @@
 # seeded from cases/ (and fuzz/seeds/); the corpus grows in BUILD/corpus and
 # is kept between runs. A crash, an abort, a sanitizer report or a leak
 # stops the script with the reproducer in BUILD/fuzz-artifacts/.
-#   [FUZZ_TARGETS="case cell ..."] scripts/fuzz.sh [BUILD] [SECONDS]
+#   [FUZZ_TARGETS="case cell ..."] [FUZZ_SEED=N] [FUZZ_RUNS="case=N cell=N ..."] \
+#     scripts/fuzz.sh [BUILD] [SECONDS]
+# FUZZ_SEED (default 0) is libFuzzer's -seed: 0 lets it pick one (exploring),
+# another value repeats the same mutations on the same corpus (CI: a run that
+# passed here passes there). FUZZ_RUNS caps the inputs per target (-runs), so
+# that a seeded run is the same sequence on a faster machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build-fuzz}
 SECONDS_EACH=${2:-60}
+SEED=${FUZZ_SEED:-0}
+runs_of() { # runs_of TARGET: the cap FUZZ_RUNS gives TARGET, or -1 (none)
+  local item
+  for item in ${FUZZ_RUNS:-}; do
+    if [ "${item%%=*}" = "$1" ]; then
+      echo "${item#*=}"
+      return
+    fi
+  done
+  echo -1
+}
 corpus=$BUILD/corpus
 artifacts=$BUILD/fuzz-artifacts
 mkdir -p "$artifacts"
@@ -30,8 +46,10 @@ for geo in cases/meshes/*.geo; do # .msh seeds meshed from the .geo files
 done
 status=0
 for target in ${FUZZ_TARGETS:-case cell catalog library msh}; do
-  echo "fuzz: $target for ${SECONDS_EACH} s" >&2
+  runs=$(runs_of "$target")
+  echo "fuzz: $target for ${SECONDS_EACH} s (seed $SEED, runs $runs)" >&2
   if ! "$BUILD/fuzz/${target}_fuzzer" "$corpus/$target" -max_total_time="$SECONDS_EACH" \
+      -seed="$SEED" -runs="$runs" -reload=0 \
       -timeout=25 -rss_limit_mb=3072 -max_len=65536 -print_final_stats=1 \
       -artifact_prefix="$artifacts/${target}-" > "$BUILD/fuzz-$target.log" 2>&1; then
     status=1

@@ -256,6 +256,9 @@ TEST_F(ProgramErrors, BadPlies) {
   expectFailure("layup s --ply t1:0:-1e-3", {"thickness"});
   expectFailure("layup s --ply t1:zero:1e-3", {"zero"});
   expectFailure("layup s --ply t1", {"MATERIAL:ANGLE_DEG:THICKNESS_M"});
+  // Beyond one turn either way (a fuzzer's 4.6e20 overflowed an int cast).
+  expectFailure("layup s --ply t1:455555555555555555555:1e-3", {"angle", "360", "t1"});
+  expectFailure("layup s --ply t1:-361:1e-3", {"angle", "-361"});
 }
 
 TEST_F(ProgramErrors, UnknownExportFormat) {

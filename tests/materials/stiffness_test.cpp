@@ -179,6 +179,26 @@ TEST(Rotation, TwiceFortyFiveEqualsNinety) {
   }
 }
 
+// Multiples of 90 degrees stay exact beyond an int's range of quarter turns:
+// 90 (2^33 + 1) degrees is 2^33 + 1 quarter turns, i.e. one quarter turn
+// (2^33 is a multiple of 4), and 90 (2^33 + 2) is a half turn. Both angles
+// are exact doubles, so the rotation must equal the small angle's bit for
+// bit (an int cast of 2^33 + 1 overflowed: identity in Release).
+TEST(Rotation, HugeMultiplesOfNinetyDegreesReduceExactly) {
+  const double turns33 = std::ldexp(1.0, 33);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_EQ(mat::axisRotationDegrees(axis, 90 * (turns33 + 1)),
+              mat::axisRotationDegrees(axis, 90))
+        << axis;
+    EXPECT_EQ(mat::axisRotationDegrees(axis, 90 * (turns33 + 2)),
+              mat::axisRotationDegrees(axis, 180))
+        << axis;
+    EXPECT_EQ(mat::axisRotationDegrees(axis, -90 * (turns33 + 1)),
+              mat::axisRotationDegrees(axis, -90))
+        << axis;
+  }
+}
+
 // A quarter turn about z maps x -> y, y -> -x: an orthotropic tensor has C11
 // and C22, C13 and C23, C55 (yz) and C66 (xz) swapped, C12, C33, C44
 // unchanged, and no coupling created. The rotation matrix is exact (0, +-1)
