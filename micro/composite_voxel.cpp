@@ -1,10 +1,10 @@
 #include "micro/composite_voxel.hpp"
 
 #include "core/error.hpp"
+#include "micro/inside_test.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 namespace lamina::micro {
 
@@ -103,8 +103,9 @@ int convexLine(const In& in, int& lo, int& hi) {
 /// against the copies of its axis that pass within r + |h|/2 of the voxel
 /// centre, listed once per voxel (a copy holding a point of the voxel
 /// passes that close): the same answer as contains(), without a search
-/// over the periodic copies per sub-sample.
-double sampledFraction(const Inclusion& inc, const Eigen::Vector3d& corner,
+/// over the periodic copies per sub-sample. Other shapes are tested by
+/// @p test (the inclusion's prepared contains()).
+double sampledFraction(const Inclusion& inc, const InsideTest& test, const Eigen::Vector3d& corner,
                        const Eigen::Vector3d& h, const Eigen::Vector3d& L) {
   const Eigen::Vector3d centre = corner + 0.5 * h;
   const bool oblique = inc.shape == Shape::Fiber && inc.axis < 0;
@@ -116,9 +117,21 @@ double sampledFraction(const Inclusion& inc, const Eigen::Vector3d& corner,
     if (feet.empty())
       return -1; // no copy comes near: the voxel is outside
   }
+  // sphere, ellipsoid, axis-aligned fibre within one periodic image: the
+  // quadratic form at x decides unless within kBoxMargin of the surface
+  Eigen::Vector3d m0;
+  const bool quadratic = test.quadraticForm(centre, 0.5 * h, m0);
+  const Eigen::Matrix3d& M = test.form();
   auto inside = [&](const Eigen::Vector3d& x) {
+    if (quadratic) {
+      const double q = (m0 + M * (x - centre)).squaredNorm();
+      if (q < 1 - kBoxMargin)
+        return true;
+      if (q > 1 + kBoxMargin)
+        return false;
+    }
     if (!oblique)
-      return inc.contains(x, L);
+      return test.contains(x);
     for (const Eigen::Vector3d& foot : feet) {
       const Eigen::Vector3d v = x - foot;
       if ((v - v.dot(dir) * dir).squaredNorm() <= inc.radius * inc.radius)
@@ -132,18 +145,37 @@ double sampledFraction(const Inclusion& inc, const Eigen::Vector3d& corner,
                  Eigen::Vector3d((c & 1) * h[0], ((c >> 1) & 1) * h[1], ((c >> 2) & 1) * h[2]));
   if (in == 0 || in == 8)
     return -1;
-  auto sample = [&](int a, int b, int c) {
-    return inside(corner + Eigen::Vector3d((a + 0.5) / kSubSamples * h[0],
-                                           (b + 0.5) / kSubSamples * h[1],
-                                           (c + 0.5) / kSubSamples * h[2]));
+  auto point = [&](int a, int b, int c) -> Eigen::Vector3d {
+    return corner + Eigen::Vector3d((a + 0.5) / kSubSamples * h[0], (b + 0.5) / kSubSamples * h[1],
+                                    (c + 0.5) / kSubSamples * h[2]);
   };
-  const bool convex = inc.shape == Shape::Sphere || inc.shape == Shape::Ellipsoid;
   int count = 0;
+  if (quadratic) {
+    // the form along each line of samples, q(c) = |base + c step|^2 =
+    // q0 + c (2 p + c s) (round-off a few ulps, far below kBoxMargin)
+    const Eigen::Vector3d step = M.col(2) * (h[2] / kSubSamples);
+    const double s = step.squaredNorm();
+    for (int a = 0; a < kSubSamples; ++a)
+      for (int b = 0; b < kSubSamples; ++b) {
+        const Eigen::Vector3d base = m0 + M * (point(a, b, 0) - centre);
+        const double q0 = base.squaredNorm(), p = base.dot(step);
+        for (int c = 0; c < kSubSamples; ++c) {
+          const double q = q0 + c * (2 * p + c * s);
+          if (q < 1 - kBoxMargin)
+            ++count;
+          else if (!(q > 1 + kBoxMargin))
+            count += test.contains(point(a, b, c));
+        }
+      }
+    return static_cast<double>(count) / (kSubSamples * kSubSamples * kSubSamples);
+  }
+  const bool convex = inc.shape == Shape::Sphere || inc.shape == Shape::Ellipsoid;
   int lo = 0, hi = 0; // the previous line's run of inside samples [lo, hi)
   for (int a = 0; a < kSubSamples; ++a)
-    for (int b = 0; b < kSubSamples; ++b)
-      count += convex ? convexLine([&](int c) { return sample(a, b, c); }, lo, hi)
-                      : fullLine([&](int c) { return sample(a, b, c); }, lo, hi);
+    for (int b = 0; b < kSubSamples; ++b) {
+      auto sample = [&](int c) { return inside(point(a, b, c)); };
+      count += convex ? convexLine(sample, lo, hi) : fullLine(sample, lo, hi);
+    }
   return static_cast<double>(count) / (kSubSamples * kSubSamples * kSubSamples);
 }
 
@@ -212,10 +244,16 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
                                                 std::vector<std::int32_t>& phase) {
   const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
   auto wrap = [](int i, int m) { return ((i % m) + m) % m; };
-  // voxel -> (inclusion, fraction) of every inclusion that cuts it
-  std::unordered_map<std::size_t, std::vector<std::pair<int, double>>> cut;
+  // (voxel, inclusion, fraction) of every inclusion that cuts a voxel
+  struct Cut {
+    std::size_t index;
+    int which;
+    double f;
+  };
+  std::vector<Cut> cut;
   for (std::size_t q = 0; q < inclusions.size(); ++q) {
     const Inclusion& inc = inclusions[q];
+    const InsideTest test(inc, size);
     std::array<int, 3> lo{}, hi{};
     voxelRange(inc, n, size, lo, hi);
     std::vector<std::pair<std::size_t, double>> found;
@@ -230,11 +268,14 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
             double f = 0;
             if (inc.shape == Shape::Layer) {
               f = layerFraction(inc, corner + 0.5 * h, h, size);
-              const bool centre = inc.contains(corner + 0.5 * h, size);
+              const bool centre = test.contains(corner + 0.5 * h);
               if ((f == 0 && !centre) || (f == 1 && centre))
                 continue; // whole voxel on the side its centre sampled
             } else {
-              f = sampledFraction(inc, corner, h, size);
+              // voxels wholly on one side (all 8 corners agree) need no corner tests
+              if (test.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
+                continue;
+              f = sampledFraction(inc, test, corner, h, size);
               if (f < 0)
                 continue;
             }
@@ -249,10 +290,18 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
       found.insert(found.end(), mine.begin(), mine.end());
     }
     for (const auto& [idx, f] : found)
-      cut[idx].emplace_back(static_cast<int>(q), f);
+      cut.push_back({idx, static_cast<int>(q), f});
   }
+  // by voxel, each voxel's inclusions in their order
+  std::sort(cut.begin(), cut.end(), [](const Cut& a, const Cut& b) {
+    return a.index != b.index ? a.index < b.index : a.which < b.which;
+  });
   std::vector<CompositeVoxel> out;
-  for (const auto& [idx, list] : cut) {
+  for (std::size_t first = 0, last = 0; first < cut.size(); first = last) {
+    const std::size_t idx = cut[first].index;
+    while (last < cut.size() && cut[last].index == idx)
+      ++last;
+    const Cut* list = &cut[first];
     // Inclusions never overlap, so the fractions of several inclusions of
     // one phase in a voxel add up (two crossing yarns, neighbouring
     // spheres); the normal is that of the interface nearest to halving the
@@ -262,18 +311,18 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
     std::size_t lead = 0;
     double f = 0;
     bool onePhase = true;
-    for (std::size_t q = 0; q < list.size(); ++q) {
-      const auto& [which, fq] = list[q];
-      onePhase = onePhase && inclusions[static_cast<std::size_t>(which)].phase ==
-                                 inclusions[static_cast<std::size_t>(list[0].first)].phase;
+    for (std::size_t q = 0; q < last - first; ++q) {
+      const double fq = list[q].f;
+      onePhase = onePhase && inclusions[static_cast<std::size_t>(list[q].which)].phase ==
+                                 inclusions[static_cast<std::size_t>(list[0].which)].phase;
       f += fq;
-      if (std::min(fq, 1 - fq) > std::min(list[lead].second, 1 - list[lead].second))
+      if (std::min(fq, 1 - fq) > std::min(list[lead].f, 1 - list[lead].f))
         lead = q;
     }
     if (!onePhase)
       continue;
     f = std::min(f, 1.0);
-    const Inclusion& inc = inclusions[static_cast<std::size_t>(list[lead].first)];
+    const Inclusion& inc = inclusions[static_cast<std::size_t>(list[lead].which)];
     if (f == 0 || f == 1) { // corners differ but every sub-sample agrees
       phase[idx] = f == 1 ? inc.phase : 0;
       continue;
@@ -288,9 +337,7 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
                                      h[2]);
     out.push_back({idx, inc.phase, 0, f, inc.normalAt(centre, size)});
   }
-  std::sort(out.begin(), out.end(),
-            [](const CompositeVoxel& a, const CompositeVoxel& b) { return a.index < b.index; });
-  return out;
+  return out; // in voxel order
 }
 
 VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials::Stiffness>& C,

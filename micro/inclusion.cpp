@@ -304,7 +304,10 @@ Eigen::Vector3d Inclusion::normalAt(const Eigen::Vector3d& p, const Eigen::Vecto
 }
 
 bool Inclusion::contains(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const {
-  const Eigen::Vector3d d = nearestImage(p - center, L);
+  return containsOffset(nearestImage(p - center, L), L);
+}
+
+bool Inclusion::containsOffset(const Eigen::Vector3d& d, const Eigen::Vector3d& L) const {
   switch (shape) {
   case Shape::Sphere:
   case Shape::Ellipsoid: {

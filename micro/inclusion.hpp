@@ -69,6 +69,10 @@ struct Inclusion {
   /// @return whether @p p (cell coordinates) lies inside, using the nearest
   /// periodic image of p - center in a cell of size @p L
   bool contains(const Eigen::Vector3d& p, const Eigen::Vector3d& L) const;
+  /// @return whether the point at offset @p d from the centre lies inside,
+  /// @p d being the nearest periodic image (contains() is this test of
+  /// nearestImage(p - center, L))
+  bool containsOffset(const Eigen::Vector3d& d, const Eigen::Vector3d& L) const;
   /// @return the inclusion's volume (fiber and layer: inside one cell of size @p L)
   double volume(const Eigen::Vector3d& L) const;
   /// @return half the extent of the inclusion along each cell axis

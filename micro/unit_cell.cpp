@@ -4,6 +4,7 @@
 #include "core/resources.hpp"
 #include "micro/composite_voxel.hpp"
 #include "micro/image_cell.hpp"
+#include "micro/inside_test.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -209,6 +210,7 @@ std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
   std::vector<std::int32_t> map(total, 0);
   const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
   for (const Inclusion& inc : inclusions) {
+    const InsideTest test(inc, size);
     std::array<int, 3> lo{}, hi{};
     voxelRange(inc, n, size, lo, hi);
     auto wrap = [](int i, int m) { return ((i % m) + m) % m; };
@@ -217,7 +219,7 @@ std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
       for (int j = lo[1]; j <= hi[1]; ++j)
         for (int k = lo[2]; k <= hi[2]; ++k) {
           const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
-          if (inc.contains(p, size)) {
+          if (test.contains(p)) {
             const std::size_t idx =
                 (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
                  static_cast<std::size_t>(wrap(j, n[1]))) *
