@@ -9,10 +9,11 @@
 // best is the least disturbed), CPU times the mean over all threads.
 // Usage: membrane_kernels N THREADS [STEPS] [all|explicit]
 //   explicit: only the SpMV floor and the explicit steps (large meshes)
-#include "membrane/model/block_matrix.hpp"
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/io/case_file.hpp"
+#include "membrane/model/block_matrix.hpp"
 #include "membrane/simulation.hpp"
+#include "timing.hpp"
 
 #include <omp.h>
 
@@ -30,38 +31,8 @@ using namespace lamina;
 
 namespace {
 
-double cpuSeconds() {
-  timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double wallSeconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-/// Best wall and mean CPU time of one call (s).
-struct Timing {
-  double best = 0, cpu = 0;
-};
-
-/// Runs @p fn @p reps times; prints best and median wall, mean CPU (ms).
-template <class F>
-Timing timeIt(const char* what, int reps, F&& fn) {
-  fn(); // warm caches and first-touch pages
-  std::vector<double> wall;
-  const double c0 = cpuSeconds();
-  for (int r = 0; r < reps; ++r) {
-    const double a = wallSeconds();
-    fn();
-    wall.push_back(wallSeconds() - a);
-  }
-  const double cpu = (cpuSeconds() - c0) / reps;
-  std::sort(wall.begin(), wall.end());
-  std::printf("%-34s best %8.3f ms  median %8.3f ms  cpu %8.3f ms\n", what, 1e3 * wall.front(),
-              1e3 * wall[wall.size() / 2], 1e3 * cpu);
-  return {wall.front(), cpu};
-}
+using bench::timeIt;
+using bench::Timing;
 
 /// Prints a / b for the best wall and the CPU times.
 void ratio(const char* what, Timing a, Timing b) {

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 #include <unordered_set>
 #include <vector>
 
@@ -36,6 +37,46 @@ constexpr std::array<Shape, 32> kShapes = {
 /// $PhysicalNames), or, in a binary file, as a 4-byte int or an 8-byte
 /// size_t; as text in an ASCII file.
 enum class Field { kText, kInt, kSize };
+
+/// The name of a value being read, for an error message. A check reads
+/// millions of values and throws at most once, so the text is built only
+/// when a message needs it: a Label holds a string literal, or refers to a
+/// string or to a callable returning one. What it refers to must outlive
+/// it; a temporary passed as an argument does (it lives to the end of the
+/// call's full expression).
+class Label {
+public:
+  /// A literal text (implicit, as are the others: call sites pass the
+  /// text or the callable where a name is expected).
+  Label(const char* text) : obj_(text), make_(&literal) {}
+  /// The text of @p text (referred to, not copied).
+  Label(const std::string& text) : obj_(&text), make_(&string) {}
+  /// The text @p make returns, called only when the label is (referred to).
+  template <class F, class = std::enable_if_t<!std::is_same_v<std::decay_t<F>, Label> &&
+                                              std::is_invocable_r_v<std::string, const F&>>>
+  Label(const F& make) : obj_(&make), make_(&call<F>) {}
+
+  /// @return the text
+  std::string operator()() const { return make_(obj_); }
+
+private:
+  static std::string literal(const void* p) { return static_cast<const char*>(p); }
+  static std::string string(const void* p) { return *static_cast<const std::string*>(p); }
+  template <class F>
+  static std::string call(const void* p) {
+    return (*static_cast<const F*>(p))();
+  }
+
+  const void* obj_;
+  std::string (*make_)(const void*);
+};
+
+/// @return a callable giving @p base's text followed by @p suffix (built
+/// when called; @p base is copied, so it may be a Label or a lambda)
+template <class Base>
+auto join(Base base, const char* suffix) {
+  return [base, suffix] { return base() + suffix; };
+}
 
 /// Reads the file's bytes front to back and reports where it stopped.
 class Cursor {
@@ -95,37 +136,37 @@ public:
   }
 
   /// @return an integer in [@p lo, @p hi] stored as @p field; @p what names it
-  long long integer(Field field, const std::string& what, long long lo, long long hi) {
+  long long integer(Field field, const Label& what, long long lo, long long hi) {
     long long v = 0;
     if (binary && field == Field::kInt) {
       v = take<std::int32_t>(what);
     } else if (binary && field == Field::kSize) {
       const auto u = take<std::uint64_t>(what);
       if (u > static_cast<std::uint64_t>(hi))
-        fail(what + " is " + std::to_string(u) + ", more than " + std::to_string(hi));
+        fail(what() + " is " + std::to_string(u) + ", more than " + std::to_string(hi));
       v = static_cast<long long>(u);
     } else {
       const std::string s = token(what);
       const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
       if (ec != std::errc() || end != s.data() + s.size())
-        fail(what + ": expected an integer, got '" + s.substr(0, 40) + "'");
+        fail(what() + ": expected an integer, got '" + s.substr(0, 40) + "'");
     }
     if (v < lo || v > hi)
-      fail(what + " is " + std::to_string(v) + ", outside " + std::to_string(lo) + " to " +
+      fail(what() + " is " + std::to_string(v) + ", outside " + std::to_string(lo) + " to " +
            std::to_string(hi));
     return v;
   }
   /// A count of items of at least @p bytes each in the rest of the file
   /// (refused when it is larger than the file can hold).
-  long long count(Field field, const std::string& what, double bytes) {
+  long long count(Field field, const Label& what, double bytes) {
     const long long n = integer(field, what, 0, std::numeric_limits<long long>::max() / 64);
     if (double(n) * bytes > double(remaining()))
-      fail(what + " is " + std::to_string(n) + ", more than the " + std::to_string(remaining()) +
+      fail(what() + " is " + std::to_string(n) + ", more than the " + std::to_string(remaining()) +
            " bytes left in the file can hold");
     return n;
   }
   /// @return a finite coordinate (8-byte double in binary)
-  double real(const std::string& what) {
+  double real(const Label& what) {
     double v = 0;
     if (binary) {
       v = take<double>(what);
@@ -133,10 +174,10 @@ public:
       const std::string s = token(what);
       const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
       if (ec != std::errc() || end != s.data() + s.size())
-        fail(what + ": expected a number, got '" + s.substr(0, 40) + "'");
+        fail(what() + ": expected a number, got '" + s.substr(0, 40) + "'");
     }
     if (!std::isfinite(v))
-      fail(what + " is not finite");
+      fail(what() + " is not finite");
     return v;
   }
   /// @return the rest of the current line (ASCII)
@@ -156,19 +197,19 @@ private:
     while (pos_ < t_.size() && std::isspace(static_cast<unsigned char>(t_[pos_])))
       ++pos_;
   }
-  std::string token(const std::string& what) {
+  std::string token(const Label& what) {
     skipSpace();
     const std::size_t start = pos_;
     while (pos_ < t_.size() && !std::isspace(static_cast<unsigned char>(t_[pos_])))
       ++pos_;
     if (start == pos_)
-      fail("the file ends before " + what);
+      fail("the file ends before " + what());
     return t_.substr(start, std::min<std::size_t>(pos_ - start, 64));
   }
   template <typename T>
-  T take(const std::string& what) {
+  T take(const Label& what) {
     if (remaining() < sizeof(T))
-      fail("the file ends before " + what);
+      fail("the file ends before " + what());
     T v;
     std::memcpy(&v, t_.data() + pos_, sizeof(T));
     pos_ += sizeof(T);
@@ -252,12 +293,12 @@ private:
     c_.binary = false; // always text
     const long long n = c_.count(Field::kText, "the number of names", 8);
     for (long long i = 0; i < n; ++i) {
-      const std::string which = "name " + std::to_string(i + 1);
-      c_.integer(Field::kText, which + ": dimension", 0, 3);
-      c_.integer(Field::kText, which + ": tag", -kMaxTag, kMaxTag);
+      const auto which = [&] { return "name " + std::to_string(i + 1); };
+      c_.integer(Field::kText, join(which, ": dimension"), 0, 3);
+      c_.integer(Field::kText, join(which, ": tag"), -kMaxTag, kMaxTag);
       const std::string name = c_.restOfLine();
       if (name.size() < 2 || name.front() != '"' || name.back() != '"' || name.size() > 130)
-        c_.fail(which + ": expected a quoted name of at most 128 characters");
+        c_.fail(which() + ": expected a quoted name of at most 128 characters");
     }
     c_.binary = bin;
   }
@@ -269,35 +310,36 @@ private:
       n[d] = c_.count(Field::kSize, "the number of entities of dimension " + std::to_string(d), 8);
     for (int d = 0; d < 4; ++d)
       for (long long i = 0; i < n[d]; ++i) {
-        const std::string which =
-            "entity " + std::to_string(i + 1) + " of dimension " + std::to_string(d);
-        const long long tag = c_.integer(Field::kInt, which + ": tag", 1, kMaxTag);
+        const auto which = [&] {
+          return "entity " + std::to_string(i + 1) + " of dimension " + std::to_string(d);
+        };
+        const long long tag = c_.integer(Field::kInt, join(which, ": tag"), 1, kMaxTag);
         for (int k = 0; k < (d == 0 ? 3 : 6); ++k)
-          c_.real(which + ": coordinate");
-        const long long phys = c_.count(Field::kSize, which + ": number of physical tags", 2);
+          c_.real(join(which, ": coordinate"));
+        const long long phys = c_.count(Field::kSize, join(which, ": number of physical tags"), 2);
         for (long long k = 0; k < phys; ++k)
-          c_.integer(Field::kInt, which + ": physical tag", -kMaxTag, kMaxTag);
+          c_.integer(Field::kInt, join(which, ": physical tag"), -kMaxTag, kMaxTag);
         if (d > 0) {
           const long long bound =
-              c_.count(Field::kSize, which + ": number of bounding entities", 2);
+              c_.count(Field::kSize, join(which, ": number of bounding entities"), 2);
           for (long long k = 0; k < bound; ++k) {
             const long long b =
-                c_.integer(Field::kInt, which + ": bounding entity", -kMaxTag, kMaxTag);
+                c_.integer(Field::kInt, join(which, ": bounding entity"), -kMaxTag, kMaxTag);
             if (!entities_[d - 1].count(std::llabs(b)))
-              c_.fail(which + " is bounded by entity " + std::to_string(b) +
+              c_.fail(which() + " is bounded by entity " + std::to_string(b) +
                       ", which is not an entity of dimension " + std::to_string(d - 1));
           }
         }
         if (!entities_[d].insert(tag).second)
-          c_.fail(which + ": tag " + std::to_string(tag) + " appears twice");
+          c_.fail(which() + ": tag " + std::to_string(tag) + " appears twice");
       }
     has_entities_ = true;
   }
 
   /// An entity block's (dim, tag): the entity must be declared in $Entities.
-  void requireEntity(int dim, long long tag, const std::string& which) {
+  void requireEntity(int dim, long long tag, const Label& which) {
     if (has_entities_ && !entities_[dim].count(tag))
-      c_.fail(which + " names entity " + std::to_string(tag) + " of dimension " +
+      c_.fail(which() + " names entity " + std::to_string(tag) + " of dimension " +
               std::to_string(dim) + ", which $Entities does not declare");
   }
 
@@ -331,22 +373,24 @@ private:
     long long total = 0;
     nodes_.reserve(static_cast<std::size_t>(h.items));
     for (long long b = 0; b < h.blocks; ++b) {
-      const std::string which = "node block " + std::to_string(b + 1);
-      const int dim = static_cast<int>(c_.integer(Field::kInt, which + ": dimension", 0, 3));
-      requireEntity(dim, c_.integer(Field::kInt, which + ": entity tag", 1, kMaxTag), which);
+      const auto which = [&] { return "node block " + std::to_string(b + 1); };
+      const int dim = static_cast<int>(c_.integer(Field::kInt, join(which, ": dimension"), 0, 3));
+      requireEntity(dim, c_.integer(Field::kInt, join(which, ": entity tag"), 1, kMaxTag), which);
       const int parametric =
-          static_cast<int>(c_.integer(Field::kInt, which + ": parametric", 0, 1));
+          static_cast<int>(c_.integer(Field::kInt, join(which, ": parametric"), 0, 1));
       const int reals = 3 + parametric * dim;
-      const long long n = c_.count(Field::kSize, which + ": number of nodes",
+      const long long n = c_.count(Field::kSize, join(which, ": number of nodes"),
                                    (1 + reals) * (c_.binary ? 8.0 : 2.0));
       if (n > h.items - total)
-        c_.fail(which + " holds more nodes than the header's " + std::to_string(h.items));
+        c_.fail(which() + " holds more nodes than the header's " + std::to_string(h.items));
       total += n;
       for (long long k = 0; k < n; ++k)
-        nodes_.push_back(c_.integer(Field::kSize, which + ": node tag", h.min, h.max));
+        nodes_.push_back(c_.integer(Field::kSize, join(which, ": node tag"), h.min, h.max));
       for (long long k = 0; k < n * reals; ++k)
-        c_.real(which + ": coordinate of node " +
-                std::to_string(nodes_[nodes_.size() - n + k / reals]));
+        c_.real([&] {
+          return which() + ": coordinate of node " +
+                 std::to_string(nodes_[nodes_.size() - n + k / reals]);
+        });
     }
     if (total != h.items)
       c_.fail("the blocks hold " + std::to_string(total) + " nodes, the header says " +
@@ -355,23 +399,24 @@ private:
   }
 
   /// @return the node count of element type @p type of an element of dimension @p dim
-  int nodesOf(long long type, int dim, const std::string& which) {
+  int nodesOf(long long type, int dim, const Label& which) {
     if (type < 1 || type >= static_cast<long long>(kShapes.size()))
-      c_.fail(which + ": element type " + std::to_string(type) +
+      c_.fail(which() + ": element type " + std::to_string(type) +
               " is not one lamina checks (types 1 to 31: points, lines, triangles, "
               "quadrangles and the 3D types, orders 1 to 3)");
     if (dim >= 0 && kShapes[type].dim != dim)
-      c_.fail(which + ": element type " + std::to_string(type) + " has dimension " +
+      c_.fail(which() + ": element type " + std::to_string(type) + " has dimension " +
               std::to_string(kShapes[type].dim) + ", its entity " + std::to_string(dim));
     return kShapes[type].nodes;
   }
 
   /// Reads @p nn node tags of element @p which and requires each in $Nodes.
-  void elementNodes(int nn, Field field, const std::string& which) {
+  void elementNodes(int nn, Field field, const Label& which) {
     for (int k = 0; k < nn; ++k) {
-      const long long t = c_.integer(field, which + ": node tag", 1, kMaxTag);
+      const long long t = c_.integer(field, join(which, ": node tag"), 1, kMaxTag);
       if (!std::binary_search(nodes_.begin(), nodes_.end(), t))
-        c_.fail(which + " refers to node " + std::to_string(t) + ", which $Nodes does not define");
+        c_.fail(which() + " refers to node " + std::to_string(t) +
+                ", which $Nodes does not define");
     }
   }
 
@@ -381,20 +426,21 @@ private:
     std::vector<long long> tags;
     tags.reserve(static_cast<std::size_t>(h.items));
     for (long long b = 0; b < h.blocks; ++b) {
-      const std::string block = "element block " + std::to_string(b + 1);
-      const int dim = static_cast<int>(c_.integer(Field::kInt, block + ": dimension", 0, 3));
-      requireEntity(dim, c_.integer(Field::kInt, block + ": entity tag", 1, kMaxTag), block);
+      const auto block = [&] { return "element block " + std::to_string(b + 1); };
+      const int dim = static_cast<int>(c_.integer(Field::kInt, join(block, ": dimension"), 0, 3));
+      requireEntity(dim, c_.integer(Field::kInt, join(block, ": entity tag"), 1, kMaxTag), block);
       const int nn =
-          nodesOf(c_.integer(Field::kInt, block + ": element type", 0, kMaxTag), dim, block);
-      const long long n = c_.count(Field::kSize, block + ": number of elements",
+          nodesOf(c_.integer(Field::kInt, join(block, ": element type"), 0, kMaxTag), dim, block);
+      const long long n = c_.count(Field::kSize, join(block, ": number of elements"),
                                    c_.binary ? 8.0 * (1 + nn) : 2.0 * (1 + nn));
       if (n > h.items - total)
-        c_.fail(block + " holds more elements than the header's " + std::to_string(h.items));
+        c_.fail(block() + " holds more elements than the header's " + std::to_string(h.items));
       total += n;
       for (long long k = 0; k < n; ++k) {
-        const long long tag = c_.integer(Field::kSize, block + ": element tag", h.min, h.max);
+        const long long tag = c_.integer(Field::kSize, join(block, ": element tag"), h.min, h.max);
         tags.push_back(tag);
-        elementNodes(nn, Field::kSize, "element " + std::to_string(tag) + " (" + block + ")");
+        elementNodes(nn, Field::kSize,
+                     [&] { return "element " + std::to_string(tag) + " (" + block() + ")"; });
       }
     }
     if (total != h.items)
@@ -412,20 +458,23 @@ private:
     for (long long k = 0; k < n; ++k) {
       nodes_.push_back(c_.integer(Field::kInt, "node tag", 1, kMaxTag));
       for (int j = 0; j < 3; ++j)
-        c_.real("coordinate of node " + std::to_string(nodes_.back()));
+        c_.real([&] { return "coordinate of node " + std::to_string(nodes_.back()); });
     }
     requireUnique(nodes_, "node");
   }
 
   /// One element of MSH 2.2 after its type and tag count: its tags
   /// (physical, elementary, then partitions: their count first) and nodes.
-  void element22(int nn, long long ntags, const std::string& which) {
-    std::vector<long long> t;
-    for (long long k = 0; k < ntags; ++k)
-      t.push_back(c_.integer(Field::kInt, which + ": tag", -kMaxTag, kMaxTag));
-    if (ntags > 2 && t[2] != ntags - 3)
-      c_.fail(which + ": " + std::to_string(ntags) + " tags but a partition count of " +
-              std::to_string(t[2]));
+  void element22(int nn, long long ntags, const Label& which) {
+    long long partitions = 0; // the third tag
+    for (long long k = 0; k < ntags; ++k) {
+      const long long t = c_.integer(Field::kInt, join(which, ": tag"), -kMaxTag, kMaxTag);
+      if (k == 2)
+        partitions = t;
+    }
+    if (ntags > 2 && partitions != ntags - 3)
+      c_.fail(which() + ": " + std::to_string(ntags) + " tags but a partition count of " +
+              std::to_string(partitions));
     elementNodes(nn, Field::kInt, which);
   }
 
@@ -447,14 +496,16 @@ private:
           c_.fail(std::to_string(follow) + " elements are more than the rest of the file holds");
         for (long long k = 0; k < follow; ++k) {
           tags.push_back(c_.integer(Field::kInt, "element tag", 1, kMaxTag));
-          element22(nn, ntags, "element " + std::to_string(tags.back()));
+          element22(nn, ntags, [&] { return "element " + std::to_string(tags.back()); });
         }
         read += follow;
       } else {
         tags.push_back(c_.integer(Field::kInt, "element tag", 1, kMaxTag));
-        const std::string which = "element " + std::to_string(tags.back());
-        const int nn = nodesOf(c_.integer(Field::kInt, which + ": type", 0, kMaxTag), -1, which);
-        element22(nn, c_.integer(Field::kInt, which + ": tag count", 0, 64), which);
+        const long long tag = tags.back();
+        const auto which = [&] { return "element " + std::to_string(tag); };
+        const int nn =
+            nodesOf(c_.integer(Field::kInt, join(which, ": type"), 0, kMaxTag), -1, which);
+        element22(nn, c_.integer(Field::kInt, join(which, ": tag count"), 0, 64), which);
         ++read;
       }
     }
