@@ -97,6 +97,46 @@ int convexLine(const In& in, int& lo, int& hi) {
   return hi - lo;
 }
 
+/// Inside samples c = 0 .. kSubSamples-1 of a line on which a sphere's,
+/// ellipsoid's or axis fibre's quadratic form is q(c) = q0 + c (2 p + c s)
+/// (InsideTest::quadraticForm): q < 1 - kBoxMargin is inside, q > 1 +
+/// kBoxMargin outside, in between @p exact(c) decides. The roots of q = 1
+/// give the run of inside samples; its two end samples are checked inside
+/// and their outer neighbours outside (q is convex: the rest follow).
+/// Otherwise (a line grazing the surface between samples, or q constant)
+/// every sample is tested.
+template <class Exact>
+int quadraticLine(double q0, double p, double s, const Exact& exact) {
+  constexpr int last = kSubSamples - 1;
+  auto q = [&](double c) { return q0 + c * (2 * p + c * s); };
+  const double disc = p * p - s * (q0 - 1);
+  if (s > 0 && disc >= 0) {
+    const double root = std::sqrt(disc);
+    // integer ceil / floor of the roots, clamped to the samples
+    const double r1 = std::clamp((-p - root) / s, -1.0, double(kSubSamples));
+    const double r2 = std::clamp((-p + root) / s, -1.0, double(kSubSamples));
+    int lo = static_cast<int>(r1), hi = static_cast<int>(r2);
+    lo += lo < r1;
+    hi -= hi > r2;
+    lo = std::max(lo, 0);
+    hi = std::min(hi, last);
+    if (lo <= hi && q(lo) < 1 - kBoxMargin && q(hi) < 1 - kBoxMargin &&
+        (lo == 0 || q(lo - 1) > 1 + kBoxMargin) && (hi == last || q(hi + 1) > 1 + kBoxMargin))
+      return hi - lo + 1;
+  }
+  if (s > 0 && q(std::clamp(-p / s, 0.0, double(last))) > 1 + kBoxMargin)
+    return 0; // the smallest q on the line is outside
+  int count = 0;
+  for (int c = 0; c < kSubSamples; ++c) {
+    const double qc = q(c);
+    if (qc < 1 - kBoxMargin)
+      ++count;
+    else if (!(qc > 1 + kBoxMargin))
+      count += exact(c);
+  }
+  return count;
+}
+
 /// Fraction of the curved inclusion @p inc in the voxel of lower corner
 /// @p corner and edges @p h, counted on kSubSamples^3 points; -1 when its 8
 /// corners lie on one side (not cut). An oblique fibre is tested only
@@ -151,21 +191,15 @@ double sampledFraction(const Inclusion& inc, const InsideTest& test, const Eigen
   };
   int count = 0;
   if (quadratic) {
-    // the form along each line of samples, q(c) = |base + c step|^2 =
-    // q0 + c (2 p + c s) (round-off a few ulps, far below kBoxMargin)
+    // the form along each line of samples, |base + c step|^2 (round-off a
+    // few ulps, far below kBoxMargin)
     const Eigen::Vector3d step = M.col(2) * (h[2] / kSubSamples);
     const double s = step.squaredNorm();
     for (int a = 0; a < kSubSamples; ++a)
       for (int b = 0; b < kSubSamples; ++b) {
         const Eigen::Vector3d base = m0 + M * (point(a, b, 0) - centre);
-        const double q0 = base.squaredNorm(), p = base.dot(step);
-        for (int c = 0; c < kSubSamples; ++c) {
-          const double q = q0 + c * (2 * p + c * s);
-          if (q < 1 - kBoxMargin)
-            ++count;
-          else if (!(q > 1 + kBoxMargin))
-            count += test.contains(point(a, b, c));
-        }
+        count += quadraticLine(base.squaredNorm(), base.dot(step), s,
+                               [&](int c) { return test.contains(point(a, b, c)); });
       }
     return static_cast<double>(count) / (kSubSamples * kSubSamples * kSubSamples);
   }
@@ -263,28 +297,34 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
 #pragma omp for schedule(dynamic)
       for (int i = lo[0]; i <= hi[0]; ++i)
         for (int j = lo[1]; j <= hi[1]; ++j)
-          for (int k = lo[2]; k <= hi[2]; ++k) {
-            const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
-            double f = 0;
-            if (inc.shape == Shape::Layer) {
-              f = layerFraction(inc, corner + 0.5 * h, h, size);
-              const bool centre = test.contains(corner + 0.5 * h);
-              if ((f == 0 && !centre) || (f == 1 && centre))
-                continue; // whole voxel on the side its centre sampled
-            } else {
-              // voxels wholly on one side (all 8 corners agree) need no corner tests
-              if (test.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
-                continue;
-              f = sampledFraction(inc, test, corner, h, size);
-              if (f < 0)
-                continue;
+          for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
+            // a run of voxels wholly on one side: no voxel of it is cut
+            const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
+            if (inc.shape != Shape::Layer && test.runSide(i, j, k0, k1, h) != 0)
+              continue;
+            for (int k = k0; k <= k1; ++k) {
+              const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
+              double f = 0;
+              if (inc.shape == Shape::Layer) {
+                f = layerFraction(inc, corner + 0.5 * h, h, size);
+                const bool centre = test.contains(corner + 0.5 * h);
+                if ((f == 0 && !centre) || (f == 1 && centre))
+                  continue; // whole voxel on the side its centre sampled
+              } else {
+                // voxels wholly on one side (all 8 corners agree) need no corner tests
+                if (test.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
+                  continue;
+                f = sampledFraction(inc, test, corner, h, size);
+                if (f < 0)
+                  continue;
+              }
+              const std::size_t idx =
+                  (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
+                   static_cast<std::size_t>(wrap(j, n[1]))) *
+                      static_cast<std::size_t>(n[2]) +
+                  static_cast<std::size_t>(wrap(k, n[2]));
+              mine.emplace_back(idx, f);
             }
-            const std::size_t idx =
-                (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
-                 static_cast<std::size_t>(wrap(j, n[1]))) *
-                    static_cast<std::size_t>(n[2]) +
-                static_cast<std::size_t>(wrap(k, n[2]));
-            mine.emplace_back(idx, f);
           }
 #pragma omp critical
       found.insert(found.end(), mine.begin(), mine.end());
@@ -343,11 +383,20 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
 VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials::Stiffness>& C,
                               const std::vector<double>& density) {
   VoxelMaterials m{cell.phase, C, density};
-  for (const CompositeVoxel& v : cell.composites) {
+  // entry base + i for composite voxel i (each voxel's own slot: threads
+  // write disjoint entries)
+  const std::size_t base = m.C.size();
+  const auto count = static_cast<std::ptrdiff_t>(cell.composites.size());
+  m.C.resize(base + cell.composites.size());
+  m.density.resize(base + cell.composites.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < count; ++i) {
+    const CompositeVoxel& v = cell.composites[static_cast<std::size_t>(i)];
     const auto in = static_cast<std::size_t>(v.inside), out = static_cast<std::size_t>(v.outside);
-    m.phase[v.index] = static_cast<std::int32_t>(m.C.size());
-    m.C.push_back(laminateStiffness(C[in], C[out], v.fraction, v.normal));
-    m.density.push_back(v.fraction * density[in] + (1 - v.fraction) * density[out]);
+    const std::size_t e = base + static_cast<std::size_t>(i);
+    m.phase[v.index] = static_cast<std::int32_t>(e);
+    m.C[e] = laminateStiffness(C[in], C[out], v.fraction, v.normal);
+    m.density[e] = v.fraction * density[in] + (1 - v.fraction) * density[out];
   }
   return m;
 }

@@ -74,6 +74,11 @@ bool InsideTest::quadraticForm(const Eigen::Vector3d& p, const Eigen::Vector3d& 
   return true;
 }
 
+int InsideTest::runSide(int i, int j, int k0, int k1, const Eigen::Vector3d& h) const {
+  const Eigen::Vector3d half(0.5 * h[0], 0.5 * h[1], 0.5 * (k1 - k0 + 1) * h[2]);
+  return boxSide(Eigen::Vector3d(i * h[0], j * h[1], k0 * h[2]) + half, half);
+}
+
 int InsideTest::boxSide(const Eigen::Vector3d& p, const Eigen::Vector3d& half) const {
   Eigen::Vector3d m0;
   if (quadraticForm(p, half, m0)) {

@@ -32,6 +32,9 @@ namespace lamina::micro {
 /// Relative margin of InsideTest::boxSide over round-off.
 inline constexpr double kBoxMargin = 1e-9;
 
+/// Voxels per run tested at once by InsideTest::runSide before voxel by voxel.
+inline constexpr int kVoxelRun = 8;
+
 /// An inclusion's inside test prepared for many points (see the file comment).
 class InsideTest {
 public:
@@ -45,6 +48,11 @@ public:
   /// @p p and half edges @p half, -1 when it holds at none of them, 0 when
   /// not known (the box may be cut by the surface)
   int boxSide(const Eigen::Vector3d& p, const Eigen::Vector3d& half) const;
+
+  /// @return boxSide() of the run of voxels (@p i, @p j, @p k0 .. @p k1)
+  /// of a grid of voxel edges @p h (voxel (i, j, k) spans [i h_x, (i+1) h_x]
+  /// x ...): whole runs inside or outside are skipped at once
+  int runSide(int i, int j, int k0, int k1, const Eigen::Vector3d& h) const;
 
   /// Sphere, ellipsoid and axis-aligned fibre: the shape is |M d|^2 <= 1
   /// for the offset d from the centre (M = form()). Sets @p m0 to M d at

@@ -217,15 +217,22 @@ std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
 #pragma omp parallel for schedule(static)
     for (int i = lo[0]; i <= hi[0]; ++i)
       for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int k = lo[2]; k <= hi[2]; ++k) {
-          const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
-          if (test.contains(p)) {
-            const std::size_t idx =
-                (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
-                 static_cast<std::size_t>(wrap(j, n[1]))) *
-                    static_cast<std::size_t>(n[2]) +
-                static_cast<std::size_t>(wrap(k, n[2]));
-            map[idx] = inc.phase;
+        for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
+          // a run of voxels wholly outside is skipped, wholly inside set
+          const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
+          const int run = test.runSide(i, j, k0, k1, h);
+          if (run < 0)
+            continue;
+          for (int k = k0; k <= k1; ++k) {
+            const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
+            if (run > 0 || test.contains(p)) {
+              const std::size_t idx =
+                  (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
+                   static_cast<std::size_t>(wrap(j, n[1]))) *
+                      static_cast<std::size_t>(n[2]) +
+                  static_cast<std::size_t>(wrap(k, n[2]));
+              map[idx] = inc.phase;
+            }
           }
         }
   }
