@@ -107,6 +107,12 @@ public:
   E getChoice(std::string_view key, const Choices& choices, E fallback) const {
     return getChoiceFrom(key, choices, fallback);
   }
+  /// Required choice: as getChoice() with a name table, and a missing
+  /// @p key is an error naming it.
+  template <class Choices>
+  auto getChoice(std::string_view key, const Choices& choices) const {
+    return choiceOf(key, choices);
+  }
   /// Required array of finite numbers.
   std::vector<double> getDoubleArray(std::string_view key) const;
   /// Required array of strings.
@@ -145,8 +151,12 @@ private:
   /// getChoice()'s lookup over any container of (name, value) pairs.
   template <class E, class Choices>
   E getChoiceFrom(std::string_view key, const Choices& choices, E fallback) const {
-    if (!has(key))
-      return fallback;
+    return has(key) ? choiceOf(key, choices) : fallback;
+  }
+  /// The value of the name at @p key (required) in @p choices; an error
+  /// naming the key and listing the names otherwise.
+  template <class Choices>
+  auto choiceOf(std::string_view key, const Choices& choices) const {
     const std::string v = getString(key);
     std::string names;
     std::size_t k = 0;

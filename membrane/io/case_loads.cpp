@@ -12,10 +12,13 @@
 #include "membrane/loads/follower_drag.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
 #include <set>
+#include <string_view>
+#include <utility>
 
 namespace lamina::membrane::case_io {
 
@@ -40,6 +43,27 @@ void addTraction(const Mesh& m, const std::vector<int>& elems, const Eigen::Vect
   }
 }
 
+/// What a [[load]] is (its `type`).
+enum class LoadType { Force, Pressure, Distributed };
+
+/// The names of `type` in a [[load]] (the one name table of LoadType).
+constexpr std::array<std::pair<std::string_view, LoadType>, 3> kLoadTypes = {
+    {{"force", LoadType::Force},
+     {"pressure", LoadType::Pressure},
+     {"distributed", LoadType::Distributed}}};
+
+/// @return the name of @p type in kLoadTypes
+std::string_view nameOf(LoadType type) {
+  for (const auto& [name, t] : kLoadTypes)
+    if (t == type)
+      return name;
+  return "load";
+}
+
+/// Where a force acts (`target`): spread over the selected elements'
+/// area, or split equally over the selected nodes.
+enum class ForceTarget { Elements, Nodes };
+
 /// [[load]]: force, pressure (a follower pressure on the large-deflection
 /// model) or distributed (eq. 31).
 void readLoadTables(const core::TableReader& root, Model& model) {
@@ -48,15 +72,18 @@ void readLoadTables(const core::TableReader& root, Model& model) {
   const auto [xmin, xmax, ymin, ymax] = mesh.bounds();
   for (const auto& r : root.tableArray("load")) {
     Load load;
-    const std::string type = r.getString("type");
-    load.name = r.getString("name", type + std::to_string(model.loads.size()));
+    const LoadType type = r.getChoice("type", kLoadTypes);
+    load.name = r.getString("name", std::string(nameOf(type)) + std::to_string(model.loads.size()));
     load.pattern = Eigen::VectorXd::Zero(ndof);
-    if (type == "force") {
+    switch (type) {
+    case LoadType::Force: {
       const double value = r.getDouble("value");
       const Eigen::Vector3d dir = readDirection(r, Eigen::Vector3d::UnitZ());
-      const std::string target = r.getString("target", "elements");
+      const ForceTarget target = r.getChoice(
+          "target", {{"elements", ForceTarget::Elements}, {"nodes", ForceTarget::Nodes}},
+          ForceTarget::Elements);
       const Selector sel = readSelector(r);
-      if (target == "elements") {
+      if (target == ForceTarget::Elements) {
         // Total force spread uniformly over the selected area (eq. 25 with b = F/A).
         const auto elems = selectElements(mesh, sel, r);
         double area = 0;
@@ -64,15 +91,15 @@ void readLoadTables(const core::TableReader& root, Model& model) {
           area += mesh.area(e);
         addTraction(
             mesh, elems, dir, [&](const Eigen::Vector2d&) { return value / area; }, load.pattern);
-      } else if (target == "nodes") {
+      } else {
         const auto nodes = selectNodes(mesh, sel, r);
         for (int node : nodes)
           for (int c = 0; c < 3; ++c)
             load.pattern[3 * node + c] += value * dir[c] / static_cast<double>(nodes.size());
-      } else {
-        r.fail("target", "target must be \"elements\" or \"nodes\"");
       }
-    } else if (type == "pressure") {
+      break;
+    }
+    case LoadType::Pressure: {
       const double p = r.getDouble("value");
       const auto elems =
           r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all")
@@ -87,7 +114,9 @@ void readLoadTables(const core::TableReader& root, Model& model) {
       addTraction(
           mesh, elems, Eigen::Vector3d::UnitZ(), [&](const Eigen::Vector2d&) { return p; },
           load.pattern);
-    } else if (type == "distributed") {
+      break;
+    }
+    case LoadType::Distributed: {
       // eq. (31): b = b0 cos^2(pi r / (2 L)) for r <= L, normal to the membrane,
       // r measured from the centre; b0 is a force per volume (N/m^3) as in the paper.
       const double b0 = r.getDouble("b0");
@@ -112,8 +141,8 @@ void readLoadTables(const core::TableReader& root, Model& model) {
             scaled);
       }
       load.pattern = scaled;
-    } else {
-      r.fail("type", "unknown load type '" + type + "' (force, pressure, distributed)");
+      break;
+    }
     }
     load.profile = TimeProfile::read(r);
     model.loads.push_back(std::move(load));

@@ -114,3 +114,20 @@ TEST(MembraneMalformed, SelectorsThatSelectNothingAreNamed) {
   EXPECT_NE(e.find("rim"), std::string::npos) << e;
   EXPECT_NE(e.find("edges"), std::string::npos) << e; // lists the sets it has
 }
+
+TEST(MembraneMalformed, LoadTypeAndTargetNameTheKeyAndTheirChoices) {
+  // The names are those of docs/membrane.md, "Loads".
+  const std::string load = "[[load]]\ntype = \"force\"\nvalue = 1.0\nall = true\n";
+  EXPECT_EQ(errorOf(kGood + load), "");
+  auto e = errorOf(kGood + replaced(load, "\"force\"", "\"forse\""));
+  EXPECT_NE(e.find("bad.toml"), std::string::npos) << e;
+  EXPECT_NE(e.find("load[0].type"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"forse\""), std::string::npos) << e;
+  EXPECT_NE(e.find("\"force\", \"pressure\" or \"distributed\""), std::string::npos) << e;
+  e = errorOf(kGood + replaced(load, "type = \"force\"\n", ""));
+  EXPECT_NE(e.find("load[0].type"), std::string::npos) << e;
+  EXPECT_NE(e.find("missing"), std::string::npos) << e;
+  e = errorOf(kGood + load + "target = \"edges\"\n");
+  EXPECT_NE(e.find("load[0].target"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"elements\" or \"nodes\""), std::string::npos) << e;
+}
