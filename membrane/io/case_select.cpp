@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <set>
 
@@ -110,77 +111,95 @@ namespace {
 bool inBox(const Eigen::Vector2d& p, const std::array<double, 4>& b, double tol) {
   return p.x() >= b[0] - tol && p.x() <= b[1] + tol && p.y() >= b[2] - tol && p.y() <= b[3] + tol;
 }
-} // namespace
 
-std::vector<int> selectNodes(const Mesh& m, const Selector& s, const core::TableReader& r) {
+/// The first triangle of @p m containing @p p (barycentric test, with a
+/// relative tolerance of 1e-12 of its area), -1 if none.
+int elementAt(const Mesh& m, const Eigen::Vector2d& p) {
+  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() * b.y() - a.y() * b.x();
+  };
+  for (int e = 0; e < m.numElements(); ++e) {
+    const auto& t = m.triangles[e];
+    const Eigen::Vector2d a = m.nodes[t[0]], b = m.nodes[t[1]], c = m.nodes[t[2]];
+    const double A2 = cross(b - a, c - a), eps = -1e-12 * A2;
+    if (cross(b - a, p - a) >= eps && cross(c - b, p - b) >= eps && cross(a - c, p - c) >= eps)
+      return e;
+  }
+  return -1;
+}
+
+/// What a selection yields: node or element indices.
+enum class Items { Nodes, Elements };
+
+/// The @p items of @p m that @p s selects (not empty; errors name @p r's
+/// keys): a box holds a node or an element's centroid, `at` is the node
+/// there or the triangle containing the point, a region is its elements or
+/// their nodes, a node set selects nodes only.
+std::vector<int> selectItems(const Mesh& m, const Selector& s, const core::TableReader& r,
+                             Items items) {
+  const bool nodes = items == Items::Nodes;
+  const int n = nodes ? m.numNodes() : m.numElements();
   std::vector<int> out;
-  const double tol = 1e-9 * m.maxEdge();
-  if (s.kind == SelectBy::Nodes) {
+  switch (s.kind) {
+  case SelectBy::Nodes: {
+    if (!nodes)
+      r.fail("nodes", "this load acts on elements: select them with box, at, region or all");
     auto it = m.node_sets.find(s.name);
     if (it == m.node_sets.end()) {
       std::string have;
-      for (const auto& [n, v] : m.node_sets)
-        have += (have.empty() ? "" : ", ") + n;
+      for (const auto& [name, v] : m.node_sets)
+        have += (have.empty() ? "" : ", ") + name;
       r.fail("nodes",
              "mesh " + m.source + " has no node set '" + s.name + "' (sets: " + have + ")");
     }
     out = it->second;
-  } else if (s.kind == SelectBy::Box) {
-    for (int i = 0; i < m.numNodes(); ++i)
-      if (inBox(m.nodes[i], s.box, tol))
+    break;
+  }
+  case SelectBy::Box: {
+    const double tol = 1e-9 * m.maxEdge();
+    for (int i = 0; i < n; ++i)
+      if (inBox(nodes ? m.nodes[i] : m.centroid(i), s.box, tol))
         out.push_back(i);
-  } else if (s.kind == SelectBy::At) {
-    out.push_back(nodeAt(m, s.at, r, "at"));
-  } else if (s.kind == SelectBy::Region) {
-    const int reg = regionIndex(m, s.name, r, "region");
-    std::set<int> nodes;
-    for (int e = 0; e < m.numElements(); ++e)
-      if (m.region_of[e] == reg)
-        nodes.insert(m.triangles[e].begin(), m.triangles[e].end());
-    out.assign(nodes.begin(), nodes.end());
-  } else {
-    for (int i = 0; i < m.numNodes(); ++i)
+    break;
+  }
+  case SelectBy::At: {
+    const int i = nodes ? nodeAt(m, s.at, r, "at") : elementAt(m, s.at);
+    if (i >= 0)
       out.push_back(i);
+    break;
+  }
+  case SelectBy::Region: {
+    const int reg = regionIndex(m, s.name, r, "region");
+    std::set<int> corners; // the region's nodes, each once, in order
+    for (int e = 0; e < m.numElements(); ++e)
+      if (m.region_of[e] == reg) {
+        if (nodes)
+          corners.insert(m.triangles[e].begin(), m.triangles[e].end());
+        else
+          out.push_back(e);
+      }
+    if (nodes)
+      out.assign(corners.begin(), corners.end());
+    break;
+  }
+  case SelectBy::All:
+    out.resize(static_cast<std::size_t>(n));
+    std::iota(out.begin(), out.end(), 0);
+    break;
   }
   if (out.empty())
-    r.fail(s.key, "selects no node of mesh " + m.source);
+    r.fail(s.key,
+           std::string("selects no ") + (nodes ? "node" : "element") + " of mesh " + m.source);
   return out;
+}
+} // namespace
+
+std::vector<int> selectNodes(const Mesh& m, const Selector& s, const core::TableReader& r) {
+  return selectItems(m, s, r, Items::Nodes);
 }
 
 std::vector<int> selectElements(const Mesh& m, const Selector& s, const core::TableReader& r) {
-  std::vector<int> out;
-  const double tol = 1e-9 * m.maxEdge();
-  if (s.kind == SelectBy::Nodes) {
-    r.fail("nodes", "this load acts on elements: select them with box, at, region or all");
-  } else if (s.kind == SelectBy::Box) {
-    for (int e = 0; e < m.numElements(); ++e)
-      if (inBox(m.centroid(e), s.box, tol))
-        out.push_back(e);
-  } else if (s.kind == SelectBy::At) {
-    // The triangle containing the point (barycentric test).
-    for (int e = 0; e < m.numElements() && out.empty(); ++e) {
-      const auto& t = m.triangles[e];
-      const Eigen::Vector2d a = m.nodes[t[0]], b = m.nodes[t[1]], c = m.nodes[t[2]];
-      auto cross = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q) {
-        return p.x() * q.y() - p.y() * q.x();
-      };
-      const double A2 = cross(b - a, c - a), eps = -1e-12 * A2;
-      if (cross(b - a, s.at - a) >= eps && cross(c - b, s.at - b) >= eps &&
-          cross(a - c, s.at - c) >= eps)
-        out.push_back(e);
-    }
-  } else if (s.kind == SelectBy::Region) {
-    const int reg = regionIndex(m, s.name, r, "region");
-    for (int e = 0; e < m.numElements(); ++e)
-      if (m.region_of[e] == reg)
-        out.push_back(e);
-  } else {
-    for (int e = 0; e < m.numElements(); ++e)
-      out.push_back(e);
-  }
-  if (out.empty())
-    r.fail(s.key, "selects no element of mesh " + m.source);
-  return out;
+  return selectItems(m, s, r, Items::Elements);
 }
 
 /// Parses `components` (a subset of "xyz") into component indices.
