@@ -95,19 +95,17 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
                         energy, scratch);
       continue;
     }
-    for (int k = 0; k < n2; ++k) { // u = 0: the strain is E
-      const double e[6] = {E[0], E[1], E[2], E[3], E[4], E[5]};
-      double sv[6];
-      stress6x6(static_cast<std::size_t>(phase[row + k]), e, sv);
-      double w = 0;
+    // u = 0: the strain is E, the stress C_p E and energy of each phase p
+    // come from the table uniform_ (the same products, formed once per phase)
+    for (int k = 0; k < n2; ++k) {
+      const double* sv = &uniform_[7 * static_cast<std::size_t>(phase[row + k])];
       for (int a = 0; a < 6; ++a) {
         S[a * P + row + k] = sv[a];
-        w += sv[a] * e[a];
         if (acc)
           acc[a] += sv[a];
       }
       if (energy)
-        *energy += w;
+        *energy += sv[6];
     }
   }
 }
@@ -254,6 +252,19 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
   const int n0 = dist_.nx(); // this slab's planes
   if (u)
     dist_.exchangeHalo(u, 3, halo_lo_.data(), halo_hi_.data());
+  if (!u) { // per phase: the stress C_p E and the energy density E : C_p : E
+    const std::size_t phases = C_.size() / 36;
+    uniform_.resize(7 * phases);
+    const double e[6] = {E[0], E[1], E[2], E[3], E[4], E[5]};
+    for (std::size_t ph = 0; ph < phases; ++ph) {
+      double* sv = &uniform_[7 * ph];
+      stress6x6(ph, e, sv);
+      double w = 0;
+      for (int a = 0; a < 6; ++a)
+        w += sv[a] * e[a];
+      sv[6] = w;
+    }
+  }
   const std::size_t P = planeStride();
   const int nt = std::max(1, std::min(omp_get_max_threads(), n0));
   if (planes_.size() < 2 * P * static_cast<std::size_t>(nt))

@@ -90,7 +90,8 @@ private:
   // gives them zero stress; anisotropicVoxels then sets theirs.
   std::vector<std::size_t> aniso_start_;
   std::vector<std::int32_t> aniso_k_;
-  mutable std::vector<double> planes_; // per thread: two voxel planes of stress (6 per voxel)
+  mutable std::vector<double> planes_;  // per thread: two voxel planes of stress (6 per voxel)
+  mutable std::vector<double> uniform_; // apply() with u = 0: per phase C_p E and E : C_p : E
 };
 
 } // namespace lamina::homogenize

@@ -11,6 +11,7 @@
 #include <memory>
 #include <mutex>
 #include <new>
+#include <sys/mman.h>
 #include <type_traits>
 
 #ifdef LAMINA_WITH_MPI
@@ -19,15 +20,35 @@
 
 namespace lamina::homogenize {
 
-AlignedBuffer::AlignedBuffer(std::size_t count) : size_(count) {
-  double* p = fftw_alloc_real(count > 0 ? count : 1);
-  if (!p)
+namespace {
+void* allocateField(std::size_t bytes) {
+  // Fields of 2 MiB and more start on a 2 MiB boundary and are offered to
+  // the kernel's transparent huge pages (used where THP is "madvise", the
+  // Debian default): one page fault per 2 MiB instead of per 4 KiB when a
+  // field is first written (a 128^3 run allocates about 0.5 GB), and fewer
+  // TLB misses in the transforms' strided passes. Smaller ones are 64-byte
+  // aligned (FFTW's SIMD alignment and more).
+  constexpr std::size_t kHuge = std::size_t(2) << 20;
+  void* p = nullptr;
+  if (posix_memalign(&p, bytes >= kHuge ? kHuge : 64, bytes > 0 ? bytes : 1) != 0 || !p)
     throw std::bad_alloc();
-  data_.reset(p);
+#ifdef MADV_HUGEPAGE
+  if (bytes >= kHuge)
+    madvise(p, bytes - bytes % kHuge, MADV_HUGEPAGE); // advice only: errors are harmless
+#endif
+  return p;
 }
 
+void freeField(void* p) {
+  std::free(p);
+}
+} // namespace
+
+AlignedBuffer::AlignedBuffer(std::size_t count)
+    : data_(static_cast<double*>(allocateField(count * sizeof(double)))), size_(count) {}
+
 void AlignedBuffer::Free::operator()(double* p) const {
-  fftw_free(p);
+  freeField(p);
 }
 
 namespace {
@@ -54,8 +75,6 @@ template <>
 struct Fftw<double> {
   using Plan = fftw_plan;
   using Complex = fftw_complex;
-  static void* alloc(std::size_t n) { return fftw_alloc_complex(n); }
-  static void free(void* p) { fftw_free(p); }
   static void threads(int n) { fftw_plan_with_nthreads(n); }
   static Plan manyR2c(const Grid& g, double* in, Complex* out, int dist, unsigned flags) {
     const Batch b(g, dist);
@@ -114,8 +133,6 @@ template <>
 struct Fftw<float> {
   using Plan = fftwf_plan;
   using Complex = fftwf_complex;
-  static void* alloc(std::size_t n) { return fftwf_alloc_complex(n); }
-  static void free(void* p) { fftwf_free(p); }
   static void threads(int n) { fftwf_plan_with_nthreads(n); }
   static Plan manyR2c(const Grid& g, float* in, Complex* out, int dist, unsigned flags) {
     const Batch b(g, dist);
@@ -289,9 +306,7 @@ std::unique_ptr<VectorFft::Plans> makePlans(const Grid& grid, const Distribution
     chunk = std::max(chunk, static_cast<std::size_t>(F::localSize(grid)));
 #endif
   chunk += chunk % 2; // keeps every chunk 16-byte aligned in single precision too
-  buffer = F::alloc(3 * chunk);
-  if (!buffer)
-    throw std::bad_alloc();
+  buffer = allocateField(3 * chunk * 2 * sizeof(T));
   if (threads > 0)
     F::threads(threads);
   const unsigned flags = measure ? FFTW_MEASURE : FFTW_ESTIMATE;
@@ -339,10 +354,7 @@ VectorFft::VectorFft(const Grid& grid, const Distribution& dist, int threads, bo
 VectorFft::~VectorFft() {
   std::lock_guard<std::mutex> lock(plannerMutex());
   plans_.reset();
-  if (precision_ == Precision::Single)
-    Fftw<float>::free(buffer_);
-  else
-    Fftw<double>::free(buffer_);
+  freeField(buffer_);
 }
 
 template <>

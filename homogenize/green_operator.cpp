@@ -87,11 +87,20 @@ double GreenOperator::apply(const double* r, double* z) const {
 }
 
 double GreenOperator::step(double* r, double alpha, const double* w, double* x, double* p,
-                           double rz) const {
+                           double rz, double rz_stop) const {
   fft_.forwardUpdate(r, alpha, w);
   double rz_new =
       fft_.precision() == Precision::Single ? solveModes<float>() : solveModes<double>();
   dist_.sum(&rz_new, 1);
+  if (rz_new <= rz_stop) { // converged (every rank sees the same sum)
+    if (x) {
+      const std::size_t n = 3 * dist_.localSize();
+#pragma omp parallel for schedule(static)
+      for (std::size_t i = 0; i < n; ++i)
+        x[i] += alpha * p[i];
+    }
+    return rz_new;
+  }
   fft_.backwardUpdate(p, rz_new / rz, x, alpha);
   return rz_new;
 }

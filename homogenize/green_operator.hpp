@@ -38,8 +38,14 @@ public:
   /// One fused conjugate-gradient step around the preconditioner:
   /// r -= alpha w (x += alpha p if @p x is not null), z = K0^+ r, and
   /// p = z + (r^T z / rz) p, in two passes over the fields besides the FFTs.
+  /// When the new r^T z is at most @p rz_stop, CG has converged and will not
+  /// use z or p again: the inverse transforms are skipped, only x += alpha p
+  /// is done (p is left as it was).
   /// @return the new r^T z over all ranks (NaN/Inf is left to the caller)
-  double step(double* r, double alpha, const double* w, double* x, double* p, double rz) const;
+  double step(double* r, double alpha, const double* w, double* x, double* p, double rz,
+              double rz_stop = -1) const;
+  /// @return the precision of the transforms
+  Precision precision() const { return fft_.precision(); }
 
 private:
   template <class T>

@@ -88,6 +88,13 @@ void Stiffness::validate(const std::string& name) const {
     throw Error("stiffness is not symmetric (max |C - C^T| / max |C| = " +
                     std::to_string(asymmetry()) + ")",
                 ctx);
+  // Fast path (a homogenization validates one stiffness per composite voxel,
+  // tens of thousands): all eigenvalues are positive and the largest is at
+  // most the trace, so a Cholesky factorisation of C - 1e-12 tr(C) I
+  // proves lo > 1e-12 tr(C) >= 1e-12 hi. Otherwise the eigenvalues decide.
+  const double tr = c_.trace();
+  if (tr > 0 && (c_ - 1e-12 * tr * Matrix6::Identity()).llt().info() == Eigen::Success)
+    return;
   Eigen::SelfAdjointEigenSolver<Matrix6> es(c_, Eigen::EigenvaluesOnly);
   const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(5);
   if (!(hi > 0) || lo <= 1e-12 * hi)
@@ -185,15 +192,28 @@ double voigtShear(const Stiffness& c) {
          15.0;
 }
 
-double reussBulk(const Stiffness& c) {
-  const Matrix6 s = c.compliance();
+namespace {
+double reussBulkOf(const Matrix6& s) {
   return 1.0 / ((s(0, 0) + s(1, 1) + s(2, 2)) + 2 * (s(0, 1) + s(1, 2) + s(0, 2)));
+}
+double reussShearOf(const Matrix6& s) {
+  return 15.0 / (4 * (s(0, 0) + s(1, 1) + s(2, 2)) - 4 * (s(0, 1) + s(1, 2) + s(0, 2)) +
+                 3 * (s(3, 3) + s(4, 4) + s(5, 5)));
+}
+} // namespace
+
+double reussBulk(const Stiffness& c) {
+  return reussBulkOf(c.compliance());
 }
 
 double reussShear(const Stiffness& c) {
+  return reussShearOf(c.compliance());
+}
+
+void reussModuli(const Stiffness& c, double& bulk, double& shear) {
   const Matrix6 s = c.compliance();
-  return 15.0 / (4 * (s(0, 0) + s(1, 1) + s(2, 2)) - 4 * (s(0, 1) + s(1, 2) + s(0, 2)) +
-                 3 * (s(3, 3) + s(4, 4) + s(5, 5)));
+  bulk = reussBulkOf(s);
+  shear = reussShearOf(s);
 }
 
 double anisotropyIndex(const Stiffness& c) {

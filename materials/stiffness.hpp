@@ -108,6 +108,10 @@ double voigtShear(const Stiffness& c);
 double reussBulk(const Stiffness& c);
 /// Reuss average shear modulus G_R (Pa).
 double reussShear(const Stiffness& c);
+/// Both Reuss moduli from one inversion of @p c (as reussBulk and reussShear).
+/// @param bulk Reuss bulk modulus on exit (Pa)
+/// @param shear Reuss shear modulus on exit (Pa)
+void reussModuli(const Stiffness& c, double& bulk, double& shear);
 /// Universal anisotropy index A^U = 5 G_V/G_R + K_V/K_R - 6 (Ranganathan and
 /// Ostoja-Starzewski 2008): zero for an isotropic tensor, positive otherwise.
 double anisotropyIndex(const Stiffness& c);
