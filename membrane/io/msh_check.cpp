@@ -396,6 +396,7 @@ private:
       c_.fail("the blocks hold " + std::to_string(total) + " nodes, the header says " +
               std::to_string(h.items));
     requireUnique(nodes_, "node");
+    indexNodes();
   }
 
   /// @return the node count of element type @p type of an element of dimension @p dim
@@ -410,11 +411,31 @@ private:
     return kShapes[type].nodes;
   }
 
+  /// Marks the node tags in a table by tag when their range is dense (gmsh
+  /// numbers nodes 1 to n), so hasNode needs no search: under 64 slots a
+  /// node, 1 bit each, less memory than nodes_ itself; else hasNode searches.
+  void indexNodes() {
+    const auto n = static_cast<long long>(nodes_.size());
+    if (nodes_.empty() || nodes_.back() - nodes_.front() >= 64 * n + 1024)
+      return;
+    first_node_ = nodes_.front();
+    node_present_.assign(static_cast<std::size_t>(nodes_.back() - first_node_ + 1), false);
+    for (long long t : nodes_)
+      node_present_[static_cast<std::size_t>(t - first_node_)] = true;
+  }
+  /// @return whether $Nodes defines node @p t
+  bool hasNode(long long t) const {
+    if (node_present_.empty())
+      return std::binary_search(nodes_.begin(), nodes_.end(), t);
+    return t >= first_node_ && t - first_node_ < static_cast<long long>(node_present_.size()) &&
+           node_present_[static_cast<std::size_t>(t - first_node_)];
+  }
+
   /// Reads @p nn node tags of element @p which and requires each in $Nodes.
   void elementNodes(int nn, Field field, const Label& which) {
     for (int k = 0; k < nn; ++k) {
       const long long t = c_.integer(field, join(which, ": node tag"), 1, kMaxTag);
-      if (!std::binary_search(nodes_.begin(), nodes_.end(), t))
+      if (!hasNode(t))
         c_.fail(which() + " refers to node " + std::to_string(t) +
                 ", which $Nodes does not define");
     }
@@ -461,6 +482,7 @@ private:
         c_.real([&] { return "coordinate of node " + std::to_string(nodes_.back()); });
     }
     requireUnique(nodes_, "node");
+    indexNodes();
   }
 
   /// One element of MSH 2.2 after its type and tag count: its tags
@@ -516,7 +538,9 @@ private:
   int version_ = 4;
   std::array<std::unordered_set<long long>, 4> entities_;
   bool has_entities_ = false;
-  std::vector<long long> nodes_; ///< node tags, sorted once $Nodes is read
+  std::vector<long long> nodes_;   ///< node tags, sorted once $Nodes is read
+  std::vector<bool> node_present_; ///< by tag - first_node_ (indexNodes), or empty
+  long long first_node_ = 0;       ///< the smallest node tag when node_present_ is used
 };
 
 } // namespace
