@@ -1,9 +1,16 @@
 #include "homogenize/stencil.hpp"
 
+// The rows the loops below read and write never overlap (distinct scratch
+// rows, node rows and stress rows), which the compiler cannot prove from the
+// pointers: without this it keeps them scalar (one double per instruction).
+// No reduction is involved, so the results are the scalar loop's bit for bit.
+#define LAMINA_STENCIL_SIMD _Pragma("omp simd")
+
 namespace lamina::homogenize::stencil {
 
 void gradientSums(const double* a, const double* b, const double* c, const double* d, int n2,
                   double* X, double* Y, double* Z) {
+  LAMINA_STENCIL_SIMD
   for (int k = 0; k < n2; ++k) {
     X[k] = (b[k] - a[k]) + (d[k] - c[k]);
     Y[k] = (c[k] + d[k]) - (a[k] + b[k]);
@@ -17,6 +24,7 @@ void gradientSums(const double* a, const double* b, const double* c, const doubl
 void strainRow(const double* sums, std::size_t L, const Grid& grid, const std::array<double, 6>& E,
                double* const eps[6]) {
   const RowSums rs(sums, L, grid);
+  LAMINA_STENCIL_SIMD
   for (int k = 0; k < grid.n[2]; ++k) {
     strainAt(rs, E, k, eps[0][k], eps[1][k], eps[2][k], eps[3][k], eps[4][k], eps[5][k]);
   }
@@ -43,6 +51,7 @@ void divergenceRow(const double* const prev_j[6], const double* const prev_m[6],
   const double *p3j = prev_j[3], *p3m = prev_m[3], *c3j = cur_j[3], *c3m = cur_m[3];
   const double *p4j = prev_j[4], *p4m = prev_m[4], *c4j = cur_j[4], *c4m = cur_m[4];
   const double *p5j = prev_j[5], *p5m = prev_m[5], *c5j = cur_j[5], *c5m = cur_m[5];
+  LAMINA_STENCIL_SIMD
   for (int k = 0; k < n2; ++k) {
     X0[k + 1] = (p0j[k] - c0j[k]) + (p0m[k] - c0m[k]);
     X3[k + 1] = (p3j[k] - c3j[k]) + (p3m[k] - c3m[k]);
@@ -57,6 +66,7 @@ void divergenceRow(const double* const prev_j[6], const double* const prev_m[6],
   for (double* a : {X0, X3, X5, Y3, Y1, Y4, Z5, Z4, Z2})
     a[0] = a[n2];
   double *fx = f[0], *fy = f[1], *fz = f[2];
+  LAMINA_STENCIL_SIMD
   for (int k = 0; k < n2; ++k) {
     // voxel k sits at index k+1, voxel k-1 at index k
     fx[k] = cx * (X0[k + 1] + X0[k]) + cy * (Y3[k + 1] + Y3[k]) + cz * (Z5[k] - Z5[k + 1]);
@@ -73,6 +83,7 @@ void xCombinations(const double* const prev[6], const double* const cur[6], int 
   const double *p0 = prev[0], *p1 = prev[1], *p2 = prev[2], *p3 = prev[3], *p4 = prev[4],
                *p5 = prev[5];
   const double *c0 = cur[0], *c1 = cur[1], *c2 = cur[2], *c3 = cur[3], *c4 = cur[4], *c5 = cur[5];
+  LAMINA_STENCIL_SIMD
   for (int k = 0; k < n2; ++k) {
     D0[k] = p0[k] - c0[k];
     D3[k] = p3[k] - c3[k];
@@ -101,6 +112,7 @@ void divergenceFromCombinations(const double* cj, const double* cm, const Grid& 
   // voxel k at index k+1, voxel k-1 at index k
   auto X = [](const double* a, const double* b, int i) { return a[i] + b[i]; };
   auto Y = [](const double* a, const double* b, int i) { return b[i] - a[i]; };
+  LAMINA_STENCIL_SIMD
   for (int k = 0; k < n2; ++k) {
     fx[k] = cx * (X(D0j, D0m, k + 1) + X(D0j, D0m, k)) +
             cy * (Y(S3j, S3m, k + 1) + Y(S3j, S3m, k)) + cz * (X(S5j, S5m, k) - X(S5j, S5m, k + 1));
