@@ -1,7 +1,7 @@
 #include "micro/composite_voxel.hpp"
 
 #include "core/error.hpp"
-#include "micro/inside_test.hpp"
+#include "micro/inside_query.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -99,7 +99,7 @@ int convexLine(const In& in, int& lo, int& hi) {
 
 /// Inside samples c = 0 .. kSubSamples-1 of a line on which a sphere's,
 /// ellipsoid's or axis fibre's quadratic form is q(c) = q0 + c (2 p + c s)
-/// (InsideTest::quadraticForm): q < 1 - kBoxMargin is inside, q > 1 +
+/// (InsideQuery::quadraticForm): q < 1 - kBoxMargin is inside, q > 1 +
 /// kBoxMargin outside, in between @p exact(c) decides. The roots of q = 1
 /// give the run of inside samples; its two end samples are checked inside
 /// and their outer neighbours outside (q is convex: the rest follow).
@@ -144,9 +144,10 @@ int quadraticLine(double q0, double p, double s, const Exact& exact) {
 /// centre, listed once per voxel (a copy holding a point of the voxel
 /// passes that close): the same answer as contains(), without a search
 /// over the periodic copies per sub-sample. Other shapes are tested by
-/// @p test (the inclusion's prepared contains()).
-double sampledFraction(const Inclusion& inc, const InsideTest& test, const Eigen::Vector3d& corner,
-                       const Eigen::Vector3d& h, const Eigen::Vector3d& L) {
+/// @p query (the inclusion's prepared contains()).
+double sampledFraction(const Inclusion& inc, const InsideQuery& query,
+                       const Eigen::Vector3d& corner, const Eigen::Vector3d& h,
+                       const Eigen::Vector3d& L) {
   const Eigen::Vector3d centre = corner + 0.5 * h;
   const bool oblique = inc.shape == Shape::Fiber && inc.axis < 0;
   const Eigen::Vector3d dir = inc.unitDirection(L);
@@ -160,8 +161,8 @@ double sampledFraction(const Inclusion& inc, const InsideTest& test, const Eigen
   // sphere, ellipsoid, axis-aligned fibre within one periodic image: the
   // quadratic form at x decides unless within kBoxMargin of the surface
   Eigen::Vector3d m0;
-  const bool quadratic = test.quadraticForm(centre, 0.5 * h, m0);
-  const Eigen::Matrix3d& M = test.form();
+  const bool quadratic = query.quadraticForm(centre, 0.5 * h, m0);
+  const Eigen::Matrix3d& M = query.form();
   auto inside = [&](const Eigen::Vector3d& x) {
     if (quadratic) {
       const double q = (m0 + M * (x - centre)).squaredNorm();
@@ -171,7 +172,7 @@ double sampledFraction(const Inclusion& inc, const InsideTest& test, const Eigen
         return false;
     }
     if (!oblique)
-      return test.contains(x);
+      return query.contains(x);
     for (const Eigen::Vector3d& foot : feet) {
       const Eigen::Vector3d v = x - foot;
       if ((v - v.dot(dir) * dir).squaredNorm() <= inc.radius * inc.radius)
@@ -199,7 +200,7 @@ double sampledFraction(const Inclusion& inc, const InsideTest& test, const Eigen
       for (int b = 0; b < kSubSamples; ++b) {
         const Eigen::Vector3d base = m0 + M * (point(a, b, 0) - centre);
         count += quadraticLine(base.squaredNorm(), base.dot(step), s,
-                               [&](int c) { return test.contains(point(a, b, c)); });
+                               [&](int c) { return query.contains(point(a, b, c)); });
       }
     return static_cast<double>(count) / (kSubSamples * kSubSamples * kSubSamples);
   }
@@ -277,7 +278,6 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
                                                 const Eigen::Vector3d& size,
                                                 std::vector<std::int32_t>& phase) {
   const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
-  auto wrap = [](int i, int m) { return ((i % m) + m) % m; };
   // (voxel, inclusion, fraction) of every inclusion that cuts a voxel
   struct Cut {
     std::size_t index;
@@ -287,7 +287,7 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
   std::vector<Cut> cut;
   for (std::size_t q = 0; q < inclusions.size(); ++q) {
     const Inclusion& inc = inclusions[q];
-    const InsideTest test(inc, size);
+    const InsideQuery query(inc, size);
     std::array<int, 3> lo{}, hi{};
     voxelRange(inc, n, size, lo, hi);
     std::vector<std::pair<std::size_t, double>> found;
@@ -300,29 +300,25 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
           for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
             // a run of voxels wholly on one side: no voxel of it is cut
             const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
-            if (inc.shape != Shape::Layer && test.runSide(i, j, k0, k1, h) != 0)
+            if (inc.shape != Shape::Layer && query.runSide(i, j, k0, k1, h) != 0)
               continue;
             for (int k = k0; k <= k1; ++k) {
               const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
               double f = 0;
               if (inc.shape == Shape::Layer) {
                 f = layerFraction(inc, corner + 0.5 * h, h, size);
-                const bool centre = test.contains(corner + 0.5 * h);
+                const bool centre = query.contains(corner + 0.5 * h);
                 if ((f == 0 && !centre) || (f == 1 && centre))
                   continue; // whole voxel on the side its centre sampled
               } else {
                 // voxels wholly on one side (all 8 corners agree) need no corner tests
-                if (test.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
+                if (query.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
                   continue;
-                f = sampledFraction(inc, test, corner, h, size);
+                f = sampledFraction(inc, query, corner, h, size);
                 if (f < 0)
                   continue;
               }
-              const std::size_t idx =
-                  (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
-                   static_cast<std::size_t>(wrap(j, n[1]))) *
-                      static_cast<std::size_t>(n[2]) +
-                  static_cast<std::size_t>(wrap(k, n[2]));
+              const std::size_t idx = wrappedVoxelIndex(i, j, k, n);
               mine.emplace_back(idx, f);
             }
           }
@@ -367,14 +363,7 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
       phase[idx] = f == 1 ? inc.phase : 0;
       continue;
     }
-    const std::size_t nn = static_cast<std::size_t>(n[1]) * static_cast<std::size_t>(n[2]);
-    const Eigen::Vector3d centre((static_cast<double>(idx / nn) + 0.5) * h[0],
-                                 (static_cast<double>((idx / static_cast<std::size_t>(n[2])) %
-                                                      static_cast<std::size_t>(n[1])) +
-                                  0.5) *
-                                     h[1],
-                                 (static_cast<double>(idx % static_cast<std::size_t>(n[2])) + 0.5) *
-                                     h[2]);
+    const Eigen::Vector3d centre = voxelCentre(idx, n, h);
     out.push_back({idx, inc.phase, 0, f, inc.normalAt(centre, size)});
   }
   return out; // in voxel order

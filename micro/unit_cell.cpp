@@ -4,7 +4,7 @@
 #include "core/resources.hpp"
 #include "micro/composite_voxel.hpp"
 #include "micro/image_cell.hpp"
-#include "micro/inside_test.hpp"
+#include "micro/inside_query.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -210,27 +210,22 @@ std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
   std::vector<std::int32_t> map(total, 0);
   const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
   for (const Inclusion& inc : inclusions) {
-    const InsideTest test(inc, size);
+    const InsideQuery query(inc, size);
     std::array<int, 3> lo{}, hi{};
     voxelRange(inc, n, size, lo, hi);
-    auto wrap = [](int i, int m) { return ((i % m) + m) % m; };
 #pragma omp parallel for schedule(static)
     for (int i = lo[0]; i <= hi[0]; ++i)
       for (int j = lo[1]; j <= hi[1]; ++j)
         for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
           // a run of voxels wholly outside is skipped, wholly inside set
           const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
-          const int run = test.runSide(i, j, k0, k1, h);
+          const int run = query.runSide(i, j, k0, k1, h);
           if (run < 0)
             continue;
           for (int k = k0; k <= k1; ++k) {
             const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
-            if (run > 0 || test.contains(p)) {
-              const std::size_t idx =
-                  (static_cast<std::size_t>(wrap(i, n[0])) * static_cast<std::size_t>(n[1]) +
-                   static_cast<std::size_t>(wrap(j, n[1]))) *
-                      static_cast<std::size_t>(n[2]) +
-                  static_cast<std::size_t>(wrap(k, n[2]));
+            if (run > 0 || query.contains(p)) {
+              const std::size_t idx = wrappedVoxelIndex(i, j, k, n);
               map[idx] = inc.phase;
             }
           }

@@ -1,8 +1,9 @@
 // Square membrane, side L (m), clamped edge. Used by the demo impact runs.
 // Physical groups: surface "membrane" (the material region), curve "edge"
 // (the boundary), point-free: the strike node is chosen by coordinates.
-L = 0.1;        // side (m)
-lc = L / 40;    // target element size (m)
+// Both can be set from the command line: gmsh -2 -setnumber lc 1e-3 square.geo
+DefineConstant[ L = 0.1 ];         // side (m)
+DefineConstant[ lc = L / 40 ];     // target element size (m)
 Point(1) = {-L/2, -L/2, 0, lc};
 Point(2) = { L/2, -L/2, 0, lc};
 Point(3) = { L/2,  L/2, 0, lc};

@@ -43,6 +43,8 @@ Eigen::Vector2d readPoint(const core::TableReader& r, const std::string& key);
 Eigen::Vector3d readDirection(const core::TableReader& r, const Eigen::Vector3d& fallback);
 /// @return the one selector key of @p r
 Selector readSelector(const core::TableReader& r);
+/// @return readSelector(@p r), or everything when @p r gives no selector key
+Selector readSelectorOrAll(const core::TableReader& r);
 /// @return the index of region @p name of @p m; an error at @p key of @p r otherwise
 int regionIndex(const Mesh& m, const std::string& name, const core::TableReader& r,
                 const std::string& key);

@@ -101,10 +101,7 @@ void readLoadTables(const core::TableReader& root, Model& model) {
     }
     case LoadType::Pressure: {
       const double p = r.getDouble("value");
-      const auto elems =
-          r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all")
-              ? selectElements(mesh, readSelector(r), r)
-              : selectElements(mesh, Selector{SelectBy::All, "", {}, {}, "all"}, r);
+      const auto elems = selectElements(mesh, readSelectorOrAll(r), r);
       if (model.kind == ModelKind::LargeDeflection) {
         // Follows the surface: current normal, current area.
         model.surface_loads.push_back(
@@ -204,10 +201,7 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
   for (const auto& r : root.tableArray("blast")) {
     if (model.kind != ModelKind::LargeDeflection)
       r.failHere("[[blast]] needs model = \"large_deflection\" (a follower load)");
-    const bool selected =
-        r.has("nodes") || r.has("box") || r.has("at") || r.has("region") || r.has("all");
-    const auto elems = selectElements(
-        model.mesh, selected ? readSelector(r) : Selector{SelectBy::All, "", {}, {}, "all"}, r);
+    const auto elems = selectElements(model.mesh, readSelectorOrAll(r), r);
     const std::string name =
         r.getString("name", "blast" + std::to_string(model.surface_loads.size()));
     if (r.has("table")) {
@@ -248,8 +242,7 @@ void readDrags(const core::TableReader& root, Model& model) {
   const int n = mesh.numNodes();
   for (const auto& r : root.tableArray("drag")) {
     Drag d;
-    const Selector sel =
-        r.has("region") ? readSelector(r) : Selector{SelectBy::All, "", {}, {}, "all"};
+    const Selector sel = readSelectorOrAll(r);
     if (sel.kind != SelectBy::Region && sel.kind != SelectBy::All)
       r.failHere("drag acts on a surface region: give region = NAME (or nothing for all)");
     d.cd = r.getDouble("cd");

@@ -44,12 +44,22 @@ Eigen::Vector3d readDirection(const core::TableReader& r, const Eigen::Vector3d&
   return fallback;
 }
 
-Selector readSelector(const core::TableReader& r) {
-  Selector s;
+namespace {
+/// The keys that select nodes or elements; a table gives at most one.
+constexpr const char* kSelectorKeys[] = {"nodes", "box", "at", "region", "all"};
+
+int selectorKeyCount(const core::TableReader& r) {
   int count = 0;
-  for (const char* k : {"nodes", "box", "at", "region", "all"})
+  for (const char* k : kSelectorKeys)
     if (r.has(k))
       ++count;
+  return count;
+}
+} // namespace
+
+Selector readSelector(const core::TableReader& r) {
+  Selector s;
+  const int count = selectorKeyCount(r);
   if (count != 1)
     r.failHere("give exactly one of nodes, box, at, region, all");
   if (r.has("nodes")) {
@@ -78,6 +88,10 @@ Selector readSelector(const core::TableReader& r) {
       r.fail("all", "all = false selects nothing");
   }
   return s;
+}
+
+Selector readSelectorOrAll(const core::TableReader& r) {
+  return selectorKeyCount(r) == 0 ? Selector{SelectBy::All, "", {}, {}, "all"} : readSelector(r);
 }
 
 int regionIndex(const Mesh& m, const std::string& name, const core::TableReader& r,

@@ -131,3 +131,14 @@ TEST(MembraneMalformed, LoadTypeAndTargetNameTheKeyAndTheirChoices) {
   EXPECT_NE(e.find("load[0].target"), std::string::npos) << e;
   EXPECT_NE(e.find("\"elements\" or \"nodes\""), std::string::npos) << e;
 }
+
+TEST(MembraneMalformed, DragRefusesASelectorOtherThanARegion) {
+  // docs/membrane.md: drag acts on surface regions (or on all elements)
+  const std::string drag = "[[drag]]\ncd = 1.0\n";
+  for (const char* sel : {"box = [-1.0, 1.0, -1.0, 1.0]\n", "at = [0.0, 0.0]\n"}) {
+    const auto e = errorOf(kGood + drag + sel);
+    EXPECT_NE(e.find("bad.toml"), std::string::npos) << e;
+    EXPECT_NE(e.find("drag[0]"), std::string::npos) << e;
+    EXPECT_NE(e.find("give region = NAME"), std::string::npos) << e;
+  }
+}

@@ -1,6 +1,6 @@
 // Composite voxels against a brute-force count: the cell build skips whole
 // voxels by a distance bound, decides most sub-samples from a quadratic
-// form and walks only near the surface (micro/inside_test.hpp); none of
+// form and walks only near the surface (micro/inside_query.hpp); none of
 // that may change the result. Here every voxel of the grid is tested
 // directly with Inclusion::contains: the centre for the phase map, the 8
 // corners for "cut", and then the 10^3 sub-samples for the fraction, and

@@ -1,11 +1,11 @@
-#include "micro/inside_test.hpp"
+#include "micro/inside_query.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 namespace lamina::micro {
 
-InsideTest::InsideTest(const Inclusion& inc, const Eigen::Vector3d& L)
+InsideQuery::InsideQuery(const Inclusion& inc, const Eigen::Vector3d& L)
     : inc_(inc), L_(L), invL_(L.cwiseInverse()) {
   double sMin = 0, sMax = 0; // the quadratic form's smallest and largest lengths
   switch (inc.shape) {
@@ -39,8 +39,8 @@ InsideTest::InsideTest(const Inclusion& inc, const Eigen::Vector3d& L)
   normM_ = quadratic_ ? 1 / sMin : 0;
 }
 
-bool InsideTest::offset(const Eigen::Vector3d& p, const Eigen::Vector3d& half,
-                        Eigen::Vector3d& d) const {
+bool InsideQuery::offset(const Eigen::Vector3d& p, const Eigen::Vector3d& half,
+                         Eigen::Vector3d& d) const {
   d = p - inc_.center; // as nearestImage(p - center, L)
   for (int i = 0; i < 3; ++i) {
     if (!reads_[i])
@@ -58,15 +58,15 @@ bool InsideTest::offset(const Eigen::Vector3d& p, const Eigen::Vector3d& half,
   return true;
 }
 
-bool InsideTest::contains(const Eigen::Vector3d& p) const {
+bool InsideQuery::contains(const Eigen::Vector3d& p) const {
   Eigen::Vector3d d;
   if (offset(p, Eigen::Vector3d::Zero(), d))
     return inc_.containsOffset(d, L_);
   return inc_.contains(p, L_);
 }
 
-bool InsideTest::quadraticForm(const Eigen::Vector3d& p, const Eigen::Vector3d& half,
-                               Eigen::Vector3d& m0) const {
+bool InsideQuery::quadraticForm(const Eigen::Vector3d& p, const Eigen::Vector3d& half,
+                                Eigen::Vector3d& m0) const {
   Eigen::Vector3d d;
   if (!quadratic_ || !offset(p, half, d))
     return false;
@@ -74,12 +74,12 @@ bool InsideTest::quadraticForm(const Eigen::Vector3d& p, const Eigen::Vector3d& 
   return true;
 }
 
-int InsideTest::runSide(int i, int j, int k0, int k1, const Eigen::Vector3d& h) const {
+int InsideQuery::runSide(int i, int j, int k0, int k1, const Eigen::Vector3d& h) const {
   const Eigen::Vector3d half(0.5 * h[0], 0.5 * h[1], 0.5 * (k1 - k0 + 1) * h[2]);
   return boxSide(Eigen::Vector3d(i * h[0], j * h[1], k0 * h[2]) + half, half);
 }
 
-int InsideTest::boxSide(const Eigen::Vector3d& p, const Eigen::Vector3d& half) const {
+int InsideQuery::boxSide(const Eigen::Vector3d& p, const Eigen::Vector3d& half) const {
   Eigen::Vector3d m0;
   if (quadraticForm(p, half, m0)) {
     // |M d| over the box lies within |M| |half| of its value at the centre

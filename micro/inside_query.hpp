@@ -1,5 +1,5 @@
 #pragma once
-/// @file inside_test.hpp
+/// @file inside_query.hpp
 /// @brief An inclusion's inside test prepared for the millions of points of
 /// a voxel grid (phase map, composite-voxel corners and sub-samples).
 ///
@@ -29,17 +29,17 @@
 
 namespace lamina::micro {
 
-/// Relative margin of InsideTest::boxSide over round-off.
+/// Relative margin of InsideQuery::boxSide over round-off.
 inline constexpr double kBoxMargin = 1e-9;
 
-/// Voxels per run tested at once by InsideTest::runSide before voxel by voxel.
+/// Voxels per run tested at once by InsideQuery::runSide before voxel by voxel.
 inline constexpr int kVoxelRun = 8;
 
 /// An inclusion's inside test prepared for many points (see the file comment).
-class InsideTest {
+class InsideQuery {
 public:
   /// Prepares the test of @p inc (kept by reference) in a cell of size @p L.
-  InsideTest(const Inclusion& inc, const Eigen::Vector3d& L);
+  InsideQuery(const Inclusion& inc, const Eigen::Vector3d& L);
 
   /// @return inc.contains(@p p, L), bit for bit
   bool contains(const Eigen::Vector3d& p) const;
