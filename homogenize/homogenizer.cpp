@@ -5,6 +5,7 @@
 #include "homogenize/cell_operator.hpp"
 #include "homogenize/fft.hpp"
 #include "homogenize/green_operator.hpp"
+#include "homogenize/start_residual.hpp"
 
 #include <omp.h>
 
@@ -61,9 +62,9 @@ namespace {
 /// The pieces of one solve, set up once and reused by the six load cases.
 class CgSolver {
 public:
-  CgSolver(std::size_t local, const CellOperator& A, const GreenOperator& M,
+  CgSolver(std::size_t local, const CellOperator& A, const StartResidual& b, const GreenOperator& M,
            const Distribution& dist, double ref_scale)
-      : n_(3 * local), A_(A), M_(M), dist_(dist), ref_(ref_scale), r_(n_), p_(n_), w_(n_) {}
+      : n_(3 * local), A_(A), b_(b), M_(M), dist_(dist), ref_(ref_scale), r_(n_), p_(n_), w_(n_) {}
 
   /// Solves load case E; returns the average stress in @p sigma and, if @p x
   /// is not null, the displacement (3 x local) in @p x.
@@ -77,12 +78,9 @@ public:
     double* p = p_.data();
     double* w = w_.data();
     const std::size_t n = n_;
-    // r = b = -D^T C E = D^T C (-E) (x = 0) straight from the operator (a
-    // negation is exact, so no pass to negate r); sigma = <C E> = -<C (-E)>
-    const std::array<double, 6> minus_E{-E[0], -E[1], -E[2], -E[3], -E[4], -E[5]};
-    A_.apply(nullptr, minus_E, r, &sigma);
-    for (double& s : sigma)
-      s = -s;
+    // r = b = -D^T C E (x = 0) and sigma = <C E>: the operator's values with
+    // u = 0, formed only next to interfaces (start_residual.hpp)
+    b_.apply(E, r, sigma);
     if (x) {
 #pragma omp parallel for schedule(static)
       for (std::size_t i = 0; i < n; ++i)
@@ -154,6 +152,7 @@ public:
 private:
   std::size_t n_;
   const CellOperator& A_;
+  const StartResidual& b_;
   const GreenOperator& M_;
   const Distribution& dist_;
   double ref_;
@@ -221,8 +220,9 @@ Result Homogenizer::run() {
   res.estimate = opt_.estimate;
   VectorFft fft(grid_, dist_, threads, measure, res.precision);
   const CellOperator A(grid_, phase_, C_, dist_);
+  const StartResidual b(grid_, phase_, C_, dist_);
   const GreenOperator M(grid_, res.lambda0, res.mu0, fft, dist_);
-  CgSolver cg(dist_.localSize(), A, M, dist_, static_cast<double>(res.voxels));
+  CgSolver cg(dist_.localSize(), A, b, M, dist_, static_cast<double>(res.voxels));
   // displacements: all six for the energy estimate, one for a sink
   const bool energy_form = opt_.estimate == Estimate::Energy;
   std::vector<AlignedBuffer> x;
