@@ -6,7 +6,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <type_traits>
 
 namespace lamina::homogenize {
 
@@ -76,40 +75,41 @@ void StartResidual::apply(const std::array<double, 6>& E, V* b,
   std::vector<std::array<double, 6>> partial(static_cast<std::size_t>(nt));
 #pragma omp parallel num_threads(nt)
   {
-    // stress rows of the voxel rows below and above a node plane (6 x n2
-    // each), two rows of x-combinations, and (float) one force row of 3 x n2
+    // stress rows of the voxels below and above a node plane (6 x n2 each),
+    // the x-combinations of two voxel rows and one node row of forces
     std::vector<double> scratch(12 * un2 + 2 * block + 3 * un2);
     double* S = scratch.data();
     double* cj = S + 12 * un2;
     double* cm = cj + block;
-    double* frow = cm + block;
+    double* const f[3] = {cm + block, cm + block + un2, cm + block + 2 * un2};
     const double *prev[6], *cur[6];
     for (int a = 0; a < 6; ++a) {
       prev[a] = S + static_cast<std::size_t>(a) * un2;
       cur[a] = S + static_cast<std::size_t>(6 + a) * un2;
     }
-    // the stresses of voxel row j of the planes below and above node plane
-    // i, and their x-combinations into out
-    auto combine = [&](int i, int j, double* out) {
-      const std::int32_t* below =
-          i == 0 ? phase_lo_.data() + static_cast<std::size_t>(j) * un2
-                 : phase_.data() + (static_cast<std::size_t>(i - 1) * static_cast<std::size_t>(n1) +
-                                    static_cast<std::size_t>(j)) *
-                                       un2;
-      const std::int32_t* above =
-          phase_.data() + (static_cast<std::size_t>(i) * static_cast<std::size_t>(n1) +
-                           static_cast<std::size_t>(j)) *
-                              un2;
-      for (std::size_t k = 0; k < un2; ++k) {
-        const double* sb = &table[6 * static_cast<std::size_t>(below[k])];
-        const double* sa = &table[6 * static_cast<std::size_t>(above[k])];
+    // the stresses of voxels k0 .. k0 + m - 1 of the voxel rows below and
+    // above, and their x-combinations into out
+    auto combine = [&](const std::int32_t* below, const std::int32_t* above, int k0, int m,
+                       double* out) {
+      for (int t = 0; t < m; ++t) {
+        const std::size_t ut = static_cast<std::size_t>(t);
+        const double* sb = &table[6 * static_cast<std::size_t>(below[k0 + t])];
+        const double* sa = &table[6 * static_cast<std::size_t>(above[k0 + t])];
         for (std::size_t a = 0; a < 6; ++a) {
-          S[a * un2 + k] = sb[a];
-          S[(6 + a) * un2 + k] = sa[a];
+          S[a * un2 + ut] = sb[a];
+          S[(6 + a) * un2 + ut] = sa[a];
         }
       }
-      stencil::xCombinations(prev, cur, n2, out);
+      stencil::xCombinations(prev, cur, m, out);
     };
+    auto voxelRow = [&](int i, int j) { // voxel row j of plane i (-1: the halo)
+      const std::size_t r = static_cast<std::size_t>(i + 1) * static_cast<std::size_t>(n1) +
+                            static_cast<std::size_t>(j);
+      return r < static_cast<std::size_t>(n1)
+                 ? phase_lo_.data() + r * un2
+                 : phase_.data() + (r - static_cast<std::size_t>(n1)) * un2;
+    };
+    std::vector<std::int32_t> column(un2); // phase of a uniform voxel column, else -1
     double acc[6] = {0, 0, 0, 0, 0, 0};
 #pragma omp for schedule(static)
     for (int i = 0; i < n0; ++i) {
@@ -123,32 +123,59 @@ void StartResidual::apply(const std::array<double, 6>& E, V* b,
       // node rows of plane i: zero unless next to an interface
       const std::int32_t* rp_below = &row_phase_[static_cast<std::size_t>(i) * n1];
       const std::int32_t* rp_above = rp_below + n1;
-      bool have_previous = false; // cm holds the combinations of row j - 1
       for (int j = 0; j < n1; ++j) {
         const int jm = j == 0 ? n1 - 1 : j - 1;
         const std::size_t row = (static_cast<std::size_t>(i) * n1 + j) * un2;
         V* const out[3] = {b + row, b + N + row, b + 2 * N + row};
+        for (V* o : out)
+          std::fill(o, o + un2, V(0));
         const std::int32_t p = rp_above[j];
-        if (p >= 0 && rp_above[jm] == p && rp_below[j] == p && rp_below[jm] == p) {
-          for (V* o : out)
-            std::fill(o, o + un2, V(0));
-          have_previous = false;
+        if (p >= 0 && rp_above[jm] == p && rp_below[j] == p && rp_below[jm] == p)
+          continue;
+        // node k is zero when voxel columns k - 1 and k are uniform in one phase
+        const std::int32_t *bj = voxelRow(i - 1, j), *bm = voxelRow(i - 1, jm),
+                           *aj = voxelRow(i, j), *am = voxelRow(i, jm);
+        for (int k = 0; k < n2; ++k) {
+          const std::int32_t v = aj[k];
+          column[static_cast<std::size_t>(k)] = am[k] == v && bj[k] == v && bm[k] == v ? v : -1;
+        }
+        auto zero = [&](int k) {
+          const std::int32_t v = column[static_cast<std::size_t>(k)];
+          return v >= 0 && v == column[static_cast<std::size_t>(k == 0 ? n2 - 1 : k - 1)];
+        };
+        // forces of nodes [k0, k1) from voxels k0 - 1 .. k1 - 1 into f
+        // (the whole periodic row when node 0 is among them)
+        auto nodes = [&](int k0, int k1) {
+          Grid g = grid_;
+          int first = 0, m = n2;
+          if (k0 > 0) {
+            first = k0 - 1;
+            m = k1 - k0 + 1;
+            g.n[2] = m;
+          }
+          combine(bj, aj, first, m, cj);
+          combine(bm, am, first, m, cm);
+          stencil::divergenceFromCombinations(cj, cm, g, f);
+          const int shift = k0 > 0 ? k0 - 1 : 0; // f[t] is node t + shift
+          for (int c = 0; c < 3; ++c)
+            for (int k = k0; k < k1; ++k)
+              out[c][k] = static_cast<V>(f[c][k - shift]);
+        };
+        if (!zero(0)) {
+          nodes(0, n2);
           continue;
         }
-        if (!have_previous)
-          combine(i, jm, cm);
-        combine(i, j, cj);
-        if constexpr (std::is_same_v<V, double>) {
-          stencil::divergenceFromCombinations(cj, cm, grid_, out);
-        } else {
-          double* const f[3] = {frow, frow + un2, frow + 2 * un2};
-          stencil::divergenceFromCombinations(cj, cm, grid_, f);
-          for (int c = 0; c < 3; ++c)
-            for (std::size_t k = 0; k < un2; ++k)
-              out[c][k] = static_cast<V>(f[c][k]);
+        for (int k0 = 1; k0 < n2;) {
+          if (zero(k0)) {
+            ++k0;
+            continue;
+          }
+          int k1 = k0 + 1;
+          while (k1 < n2 && !zero(k1))
+            ++k1;
+          nodes(k0, k1);
+          k0 = k1;
         }
-        std::swap(cj, cm);
-        have_previous = true;
       }
     }
     for (int a = 0; a < 6; ++a)

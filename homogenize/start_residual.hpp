@@ -7,13 +7,14 @@
 /// With u = 0 every voxel's stress is its phase's C_p E, so the nodal force
 /// f = D^T sigma of a node whose 8 surrounding voxels share one phase is the
 /// divergence of a uniform stress: exactly zero (each x-, y- and
-/// z-difference of the stencil subtracts equal numbers). Only node rows
-/// (along z) next to an interface are formed, with the stencil functions
-/// the cell operator uses (stencil.hpp), so b equals CellOperator::apply
-/// with u = 0 bit for bit; the others are zero-filled. On the 128^3
-/// sphere cell 41 % of the node rows (1.9 % of the nodes) are next to an
-/// interface. The average sums the voxels' stresses in the order the cell
-/// operator does with one thread (per thread: its planes in order).
+/// z-difference of the stencil subtracts equal numbers). Only the runs of
+/// nodes along z next to an interface are formed, with the stencil
+/// functions the cell operator uses (stencil.hpp) on those runs, so b
+/// equals CellOperator::apply with u = 0 bit for bit; the rest is
+/// zero-filled. On the 128^3 sphere cell 1.9 % of the nodes (in 42 % of
+/// the node rows) are next to an interface. The average sums the voxels'
+/// stresses in the order the cell operator does with one thread (per
+/// thread: its planes in order).
 
 #include "homogenize/distribution.hpp"
 #include "homogenize/grid.hpp"

@@ -24,7 +24,8 @@ using materials::Stiffness;
 // 10 x 12 x 14 voxels of unequal edges: an isotropic matrix with a block of
 // a second isotropic phase and, on its face, a few voxels of a generic
 // anisotropic phase (as composite voxels are); the rows away from the block
-// are uniform, those through it are not.
+// are uniform, those through it are not, and one voxel sits on the
+// periodic boundary in z.
 struct Cell {
   homogenize::Grid grid;
   std::vector<std::int32_t> phase;
@@ -48,6 +49,8 @@ struct Cell {
     for (int k = 5; k < 9; ++k)
       phase[index(3, 4, k)] = 2;
     phase[index(6, 8, 11)] = 2;
+    // an interface across the periodic z boundary (node 0 takes voxel n2 - 1)
+    phase[index(1, 10, 13)] = 1;
   }
   std::size_t index(int i, int j, int k) const {
     return (static_cast<std::size_t>(i) * static_cast<std::size_t>(grid.n[1]) +
