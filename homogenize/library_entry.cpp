@@ -82,6 +82,10 @@ materials::Material makeEntry(const std::string& name, const micro::CellSpec& sp
   for (const auto& ph : spec.phases)
     names.push_back(ph.name + " (" + ph.source + ")");
   p.insert("phases", names);
+  // per-voxel stiffnesses the solver holds besides the phases' (a composite
+  // voxel's laminate; a whole voxel of a yarn following its path)
+  p.insert("composite_voxels", static_cast<std::int64_t>(cell.composites.size()));
+  p.insert("oriented_voxels", static_cast<std::int64_t>(cell.oriented.size()));
   p.insert("J", J);
   p.insert("solver", kSolverName);
   p.insert("tol", options.tol);

@@ -117,7 +117,8 @@ double positive(const core::TableReader& t, const std::string& key) {
 /// The keys of a yarn (docs/homogenize.md): direction (an axis), crimp (the
 /// axis it undulates along, default z), width, thickness, amplitude
 /// (default 0), wavelength (default the cell length along direction; must
-/// divide it, so the yarn is periodic).
+/// divide it, so the yarn is periodic), follow_path (default true: the
+/// phase's law is rotated along the centre line, yarn_orientation.hpp).
 void readYarn(const core::TableReader& t, const CellSpec& cell, Inclusion& p) {
   p.width = positive(t, "width");
   p.thickness = positive(t, "thickness");
@@ -129,6 +130,7 @@ void readYarn(const core::TableReader& t, const CellSpec& cell, Inclusion& p) {
     t.fail("crimp", "required for a yarn along z: the axis it undulates along, \"x\" or \"y\"");
   if (p.crimp == p.axis)
     t.fail("crimp", "must differ from the yarn's direction");
+  p.follow_path = t.getBool("follow_path", true);
   p.amplitude = t.getDouble("amplitude", 0.0);
   if (!(p.amplitude >= 0) || !std::isfinite(p.amplitude))
     t.fail("amplitude",

@@ -364,7 +364,7 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
       continue;
     }
     const Eigen::Vector3d centre = voxelCentre(idx, n, h);
-    out.push_back({idx, inc.phase, 0, f, inc.normalAt(centre, size)});
+    out.push_back({idx, inc.phase, 0, f, inc.normalAt(centre, size), list[lead].which});
   }
   return out; // in voxel order
 }
@@ -372,20 +372,44 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
 VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials::Stiffness>& C,
                               const std::vector<double>& density) {
   VoxelMaterials m{cell.phase, C, density};
-  // entry base + i for composite voxel i (each voxel's own slot: threads
-  // write disjoint entries)
-  const std::size_t base = m.C.size();
-  const auto count = static_cast<std::ptrdiff_t>(cell.composites.size());
-  m.C.resize(base + cell.composites.size());
-  m.density.resize(base + cell.composites.size());
+  // the stiffness of phase @p ph in voxel @p idx: rotated along its yarn's
+  // path when the voxel is oriented (yarn_orientation.hpp), else the phase's
+  auto stiffnessIn = [&](std::size_t idx, int ph) {
+    const OrientedVoxel* o = findVoxel(cell.oriented, idx);
+    const auto& Cp = C[static_cast<std::size_t>(ph)];
+    if (!o || o->phase != ph)
+      return Cp;
+    return Cp.rotated(materials::axisRotation(o->axis, o->angle));
+  };
+  // oriented voxels that are not composite: one entry each, after the
+  // composite voxels' entries
+  std::vector<std::size_t> whole;
+  for (const OrientedVoxel& o : cell.oriented)
+    if (!findVoxel(cell.composites, o.index))
+      whole.push_back(o.index);
+  // entry base + i for composite voxel i, then base + composites + i for
+  // whole oriented voxel i (each voxel's own slot: threads write disjoint
+  // entries)
+  const std::size_t base = m.C.size(), nc = cell.composites.size();
+  m.C.resize(base + nc + whole.size());
+  m.density.resize(base + nc + whole.size());
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t i = 0; i < count; ++i) {
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nc); ++i) {
     const CompositeVoxel& v = cell.composites[static_cast<std::size_t>(i)];
     const auto in = static_cast<std::size_t>(v.inside), out = static_cast<std::size_t>(v.outside);
     const std::size_t e = base + static_cast<std::size_t>(i);
     m.phase[v.index] = static_cast<std::int32_t>(e);
-    m.C[e] = laminateStiffness(C[in], C[out], v.fraction, v.normal);
+    m.C[e] = laminateStiffness(stiffnessIn(v.index, v.inside), C[out], v.fraction, v.normal);
     m.density[e] = v.fraction * density[in] + (1 - v.fraction) * density[out];
+  }
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(whole.size()); ++i) {
+    const std::size_t idx = whole[static_cast<std::size_t>(i)];
+    const std::int32_t ph = cell.phase[idx];
+    const std::size_t e = base + nc + static_cast<std::size_t>(i);
+    m.phase[idx] = static_cast<std::int32_t>(e);
+    m.C[e] = stiffnessIn(idx, ph);
+    m.density[e] = density[static_cast<std::size_t>(ph)];
   }
   return m;
 }

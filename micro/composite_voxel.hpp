@@ -58,7 +58,10 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
 /// The per-voxel materials the homogenizer takes: a phase map and one
 /// stiffness and density per entry. Without composite voxels they are the
 /// cell's; with them each cut voxel gets its own entry (appended after the
-/// cell's phases) holding its laminate stiffness and mixed density.
+/// cell's phases) holding its laminate stiffness and mixed density. A voxel
+/// of a yarn that follows its path (UnitCell::oriented) gets its own entry
+/// too: the yarn phase's stiffness rotated to the path's tangent (the yarn
+/// side of a cut voxel's laminate, or the whole voxel's stiffness).
 struct VoxelMaterials {
   std::vector<std::int32_t> phase;     ///< entry per voxel
   std::vector<materials::Stiffness> C; ///< per entry (lamina order, Pa)
@@ -66,7 +69,9 @@ struct VoxelMaterials {
 };
 
 /// Builds the VoxelMaterials of @p cell from the phase stiffnesses @p C and
-/// densities @p density (laminate stiffness per composite voxel).
+/// densities @p density (laminate stiffness per composite voxel, rotated
+/// stiffness per oriented voxel; entries: the phases, then the composite
+/// voxels in voxel order, then the whole oriented voxels in voxel order).
 VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials::Stiffness>& C,
                               const std::vector<double>& density);
 

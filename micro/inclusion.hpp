@@ -42,7 +42,10 @@ struct Inclusion {
   double amplitude = 0;  ///< yarn: amplitude A of the centre line's sinusoid (0: straight)
   double wavelength = 0; ///< yarn: period lambda of the centre line (divides the cell length)
   int crimp = 2;         ///< yarn: the axis the centre line undulates along (not `axis`)
-  int axis = 0;          ///< fiber/yarn direction, layer normal (0=x,1=y,2=z), -1 if oblique
+  /// yarn: its phase's law follows the centre line (rotated per voxel to
+  /// the tangent; yarn_orientation.hpp)
+  bool follow_path = true;
+  int axis = 0; ///< fiber/yarn direction, layer normal (0=x,1=y,2=z), -1 if oblique
   /// fiber: lattice direction [u, v, w]; layer: plane indices [h, k, l]
   /// (integers without a common factor; e_axis for an axis-aligned one)
   Eigen::Vector3i lattice = Eigen::Vector3i(1, 0, 0);

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "core/toml_reader.hpp"
 #include "materials/law_spec.hpp"
+#include "materials/symmetry.hpp"
 
 #include <cmath>
 
@@ -14,6 +15,11 @@ materials::Stiffness Phase::stiffnessAt(double J) const {
   // eqs. (13)-(16) of the polyurea chapter: instantaneous isotropic moduli at J.
   const materials::GvboModuli m = materials::gvboModuli(*gvbo, J);
   return materials::Stiffness::fromLame(m.lambda, m.G);
+}
+
+bool Phase::isotropic() const {
+  return law == materials::LawKind::Isotropic || law == materials::LawKind::Gvbo ||
+         materials::classify(C, 1e-12).cls == materials::SymmetryClass::Isotropic;
 }
 
 Phase readPhase(const core::TableReader& t, const CatalogProvider& catalog) {

@@ -46,6 +46,10 @@ struct Phase {
   /// gvbo phase: isotropic from gvboModuli(J) (eqs. 13-16 of the chapter);
   /// for other laws @p J is ignored and C is returned.
   materials::Stiffness stiffnessAt(double J) const;
+  /// @return whether every rotation leaves the phase's stiffness as it is:
+  /// law isotropic or gvbo (isotropic at every J), or a C classified
+  /// isotropic to 1e-12 of max |C| (round-off of a C entered isotropic)
+  bool isotropic() const;
 };
 
 /// Supplies catalog entries on demand (the catalog file is read only when a

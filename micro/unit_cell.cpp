@@ -5,6 +5,7 @@
 #include "micro/composite_voxel.hpp"
 #include "micro/image_cell.hpp"
 #include "micro/inside_query.hpp"
+#include "micro/yarn_orientation.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -203,34 +204,37 @@ void voxelRange(const Inclusion& inc, const std::array<int, 3>& n, const Eigen::
   }
 }
 
+void forEachVoxelInside(const Inclusion& inc, const std::array<int, 3>& n,
+                        const Eigen::Vector3d& size,
+                        const std::function<void(std::size_t)>& visit) {
+  const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
+  const InsideQuery query(inc, size);
+  std::array<int, 3> lo{}, hi{};
+  voxelRange(inc, n, size, lo, hi);
+#pragma omp parallel for schedule(static)
+  for (int i = lo[0]; i <= hi[0]; ++i)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
+        // a run of voxels wholly outside is skipped, wholly inside visited
+        const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
+        const int run = query.runSide(i, j, k0, k1, h);
+        if (run < 0)
+          continue;
+        for (int k = k0; k <= k1; ++k) {
+          const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
+          if (run > 0 || query.contains(p))
+            visit(wrappedVoxelIndex(i, j, k, n));
+        }
+      }
+}
+
 std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,
                                    const std::array<int, 3>& n, const Eigen::Vector3d& size) {
   const std::size_t total = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *
                             static_cast<std::size_t>(n[2]);
   std::vector<std::int32_t> map(total, 0);
-  const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
-  for (const Inclusion& inc : inclusions) {
-    const InsideQuery query(inc, size);
-    std::array<int, 3> lo{}, hi{};
-    voxelRange(inc, n, size, lo, hi);
-#pragma omp parallel for schedule(static)
-    for (int i = lo[0]; i <= hi[0]; ++i)
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
-          // a run of voxels wholly outside is skipped, wholly inside set
-          const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
-          const int run = query.runSide(i, j, k0, k1, h);
-          if (run < 0)
-            continue;
-          for (int k = k0; k <= k1; ++k) {
-            const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
-            if (run > 0 || query.contains(p)) {
-              const std::size_t idx = wrappedVoxelIndex(i, j, k, n);
-              map[idx] = inc.phase;
-            }
-          }
-        }
-  }
+  for (const Inclusion& inc : inclusions)
+    forEachVoxelInside(inc, n, size, [&](std::size_t idx) { map[idx] = inc.phase; });
   return map;
 }
 
@@ -265,6 +269,11 @@ UnitCell buildCell(const CellSpec& spec, std::array<int, 3> n) {
   cell.phase = voxelize(cell.inclusions, n, spec.size);
   if (spec.composite_voxels.value_or(kCompositeVoxelsByDefault))
     cell.composites = findCompositeVoxels(cell.inclusions, n, spec.size, cell.phase);
+  std::vector<bool> anisotropic; // the phases a rotation changes
+  for (const Phase& ph : spec.phases)
+    anisotropic.push_back(!ph.isotropic());
+  cell.oriented =
+      orientYarnVoxels(cell.inclusions, anisotropic, n, spec.size, cell.phase, cell.composites);
   cell.countFractions();
   return cell;
 }

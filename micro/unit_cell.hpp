@@ -11,9 +11,11 @@
 
 #include "micro/cell.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace lamina::micro {
@@ -25,7 +27,27 @@ struct CompositeVoxel {
   int outside = 0;        ///< phase around it (the matrix, phase 0)
   double fraction = 0;    ///< volume fraction of `inside` in the voxel, in (0, 1)
   Eigen::Vector3d normal; ///< unit interface normal (pointing out of the inclusion)
+  int inclusion = -1;     ///< the inclusion whose interface gives the normal (UnitCell::inclusions)
 };
+
+/// One voxel whose yarn phase is rotated to the tangent of the yarn's
+/// centre line (yarn_orientation.hpp): its stiffness is
+/// C.rotated(materials::axisRotation(axis, angle)).
+struct OrientedVoxel {
+  std::size_t index = 0; ///< voxel (C order, x slowest)
+  int phase = 0;         ///< the yarn's phase, whose stiffness is rotated
+  int axis = 1;          ///< rotation axis: the yarn's width axis (0=x, 1=y, 2=z)
+  double angle = 0;      ///< right-handed rotation about e_axis (radians)
+};
+
+/// @return the element of @p list (CompositeVoxel or OrientedVoxel, sorted
+/// by voxel index) for voxel @p index, nullptr if it has none
+template <class Voxel>
+const Voxel* findVoxel(const std::vector<Voxel>& list, std::size_t index) {
+  const auto it = std::lower_bound(list.begin(), list.end(), index,
+                                   [](const Voxel& v, std::size_t i) { return v.index < i; });
+  return it != list.end() && it->index == index ? &*it : nullptr;
+}
 
 /// A unit cell with its phase map.
 struct UnitCell {
@@ -38,6 +60,9 @@ struct UnitCell {
   std::vector<double> voxel_fraction;     ///< per phase: fraction of voxels
   int phase_count = 0;                    ///< number of phases
   std::vector<CompositeVoxel> composites; ///< cut voxels (empty without composite voxels)
+  /// voxels whose yarn phase is rotated along the yarn's path, in voxel
+  /// order (yarn_orientation.hpp; empty when no yarn follows its path)
+  std::vector<OrientedVoxel> oriented;
 
   /// @return the number of voxels
   std::size_t voxels() const { return phase.size(); }
@@ -95,6 +120,13 @@ inline Eigen::Vector3d voxelCentre(std::size_t index, const std::array<int, 3>& 
           (static_cast<double>((index / n2) % n1) + 0.5) * h[1],
           (static_cast<double>(index % n2) + 0.5) * h[2]};
 }
+
+/// Calls @p visit(index) for every voxel (index wrapped periodically, C
+/// order) whose centre lies inside @p inc, each once, from several OpenMP
+/// threads at once (visit must be safe for distinct voxels): whole runs of
+/// voxels inside or outside are decided at once (InsideQuery::runSide).
+void forEachVoxelInside(const Inclusion& inc, const std::array<int, 3>& n,
+                        const Eigen::Vector3d& size, const std::function<void(std::size_t)>& visit);
 
 /// Samples a phase map from placed inclusions: voxel centre inside an
 /// inclusion -> its phase, else phase 0.

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -113,6 +114,19 @@ inline void expectWithinVoigtReuss(const Matrix6& C, const std::vector<Stiffness
   Eigen::SelfAdjointEigenSolver<Matrix6> lo(0.5 * ((C - R) + (C - R).transpose()));
   EXPECT_GE(up.eigenvalues().minCoeff(), -rel * scale) << "C above the Voigt bound";
   EXPECT_GE(lo.eigenvalues().minCoeff(), -rel * scale) << "C below the Reuss bound";
+}
+
+/// The symmetries of the balanced plain weave of cases/cells/plain-weave*.toml
+/// (plain_weave_symmetry_test.cpp has the derivation): C11 = C22, C13 = C23,
+/// C55 = C66 and every constant with an odd number of x or y indices zero
+/// (orthotropic), each to @p tol (Pa).
+inline void expectPlainWeaveSymmetry(const Matrix6& C, double tol) {
+  EXPECT_NEAR(C(0, 0), C(1, 1), tol);
+  EXPECT_NEAR(C(0, 2), C(1, 2), tol);
+  EXPECT_NEAR(C(4, 4), C(5, 5), tol);
+  for (int i = 0; i < 6; ++i)
+    for (int j = std::max(i + 1, 3); j < 6; ++j)
+      EXPECT_NEAR(C(i, j), 0.0, tol) << i << ", " << j;
 }
 
 /// A random symmetric positive definite stiffness (lamina order, Pa), well

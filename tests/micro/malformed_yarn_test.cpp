@@ -75,6 +75,15 @@ TEST(MalformedYarn, BadDirectionCrimpAndAmplitude) {
   expectError(kHead + yarn(kWarp + "radius = 0.1"), "radius", "");
 }
 
+TEST(MalformedYarn, FollowPathMustBeABooleanOnAYarn) {
+  expectError(kHead + yarn(kWarp + "follow_path = \"yes\""), "follow_path", "");
+  expectError(kHead + yarn(kWarp + "follow_path = 1"), "follow_path", "");
+  // not a key of other shapes
+  expectError(kHead + "[[inclusions]]\nphase = \"y\"\nshape = \"fiber\"\ndirection = \"x\"\n"
+                      "radius = 0.1\nfollow_path = true\n",
+              "follow_path", "");
+}
+
 TEST(MalformedYarn, NonFiniteAndHugeSizesAreRefused) {
   // NaN and infinity never reach the geometry: the reader names the key
   expectError(kHead + yarn("direction = \"x\"\nwidth = nan\nthickness = 0.1"), "width", "finite");
