@@ -175,8 +175,20 @@ Homogenizer::Homogenizer(const Grid& grid, const Distribution& dist,
   LAMINA_CHECK(C_.size() == density_.size(), "one density per phase is required");
   LAMINA_CHECK(phase_.size() == dist_.localSize(), "phase map size does not match the grid");
   LAMINA_CHECK(opt_.tol > 0, "tolerance must be positive");
-  for (std::size_t p = 0; p < C_.size(); ++p)
-    C_[p].validate("phase " + std::to_string(p));
+  // one stiffness per composite voxel (tens of thousands): checked on the
+  // threads, the first invalid one again to throw its message
+  const long phases = static_cast<long>(C_.size());
+  long bad = phases;
+#pragma omp parallel for schedule(static) reduction(min : bad)
+  for (long p = 0; p < phases; ++p) {
+    try {
+      C_[static_cast<std::size_t>(p)].validate("");
+    } catch (const Error&) {
+      bad = std::min(bad, p);
+    }
+  }
+  if (bad < phases)
+    C_[static_cast<std::size_t>(bad)].validate("phase " + std::to_string(bad));
 }
 
 Result Homogenizer::run() {
@@ -196,12 +208,28 @@ Result Homogenizer::run() {
   res.voxels = grid_.size();
 
   // setup: phase fractions, density, reference medium, FFT plans
+  // voxels per phase, on the threads (integer sums: any order); the first
+  // voxel whose phase has no stiffness is reported
   std::vector<std::size_t> count(C_.size(), 0);
-  for (std::int32_t p : phase_) {
-    LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C_.size(), "phase index ", p,
-                 " has no stiffness");
-    ++count[static_cast<std::size_t>(p)];
+  const long voxels = static_cast<long>(phase_.size());
+  long bad = voxels;
+#pragma omp parallel
+  {
+    std::vector<std::size_t> mine(C_.size(), 0);
+#pragma omp for schedule(static) reduction(min : bad)
+    for (long v = 0; v < voxels; ++v) {
+      const std::int32_t p = phase_[static_cast<std::size_t>(v)];
+      if (p >= 0 && static_cast<std::size_t>(p) < C_.size())
+        ++mine[static_cast<std::size_t>(p)];
+      else
+        bad = std::min(bad, v);
+    }
+#pragma omp critical(lamina_homogenizer_phase_count)
+    for (std::size_t p = 0; p < count.size(); ++p)
+      count[p] += mine[p];
   }
+  LAMINA_CHECK(bad == voxels, "phase index ",
+               bad < voxels ? phase_[static_cast<std::size_t>(bad)] : 0, " has no stiffness");
   dist_.sum(count.data(), static_cast<int>(count.size()));
   std::vector<materials::Stiffness> present;
   for (std::size_t p = 0; p < C_.size(); ++p) {

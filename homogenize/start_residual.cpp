@@ -11,16 +11,12 @@ namespace lamina::homogenize {
 
 StartResidual::StartResidual(const Grid& grid, const std::vector<std::int32_t>& phase,
                              const std::vector<materials::Stiffness>& C, const Distribution& dist)
-    : grid_(grid), dist_(dist), phase_(phase) {
+    : grid_(grid), dist_(dist), phase_(phase), C_(C) {
   LAMINA_CHECK(phase_.size() == dist.localSize(), "phase map has ", phase_.size(),
                " voxels, the grid (slab) ", dist.localSize());
   phase_lo_.resize(dist.planeSize());
   std::vector<std::int32_t> unused(dist.planeSize());
   dist.exchangeHalo(phase_.data(), phase_lo_.data(), unused.data());
-  for (const auto& c : C)
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j)
-        C_.push_back(c(i, j));
   const std::size_t n1 = static_cast<std::size_t>(grid.n[1]),
                     n2 = static_cast<std::size_t>(grid.n[2]);
   const long rows = (static_cast<long>(dist.nx()) + 1) * static_cast<long>(n1);
@@ -29,10 +25,10 @@ StartResidual::StartResidual(const Grid& grid, const std::vector<std::int32_t>& 
   for (long r = 0; r < rows; ++r) {
     const std::size_t ur = static_cast<std::size_t>(r);
     const std::int32_t* row = ur < n1 ? phase_lo_.data() + ur * n2 : phase_.data() + (ur - n1) * n2;
-    bool uniform = true;
-    for (std::size_t k = 1; k < n2; ++k)
-      uniform = uniform && row[k] == row[0];
-    row_phase_[ur] = uniform ? row[0] : -1;
+    std::size_t k = 1;
+    while (k < n2 && row[k] == row[0])
+      ++k;
+    row_phase_[ur] = k == n2 ? row[0] : -1;
   }
 }
 
@@ -56,16 +52,14 @@ void StartResidual::apply(const std::array<double, 6>& E, V* b,
   // per phase the stress C_p (-E), formed as CellOperator forms it with u =
   // 0: b = D^T C (-E) is the exact negation of -D^T C E
   const std::array<double, 6> mE{-E[0], -E[1], -E[2], -E[3], -E[4], -E[5]};
-  const std::size_t phases = C_.size() / 36;
+  const std::size_t phases = C_.size();
   std::vector<double> table(6 * phases);
   for (std::size_t ph = 0; ph < phases; ++ph) {
-    const double* Cp = &C_[36 * ph];
-    for (int a = 0; a < 6; ++a) {
-      const double* rowC = Cp + 6 * a;
-      table[6 * ph + static_cast<std::size_t>(a)] = rowC[0] * mE[0] + rowC[1] * mE[1] +
-                                                    rowC[2] * mE[2] + rowC[3] * mE[3] +
-                                                    rowC[4] * mE[4] + rowC[5] * mE[5];
-    }
+    const materials::Stiffness& c = C_[ph];
+    for (int a = 0; a < 6; ++a)
+      table[6 * ph + static_cast<std::size_t>(a)] = c(a, 0) * mE[0] + c(a, 1) * mE[1] +
+                                                    c(a, 2) * mE[2] + c(a, 3) * mE[3] +
+                                                    c(a, 4) * mE[4] + c(a, 5) * mE[5];
   }
   const int n0 = dist_.nx(), n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t N = dist_.localSize(), plane = dist_.planeSize();

@@ -32,7 +32,7 @@ public:
   /// @param grid the voxel grid
   /// @param phase phase index per voxel of this process's slab
   ///   (dist.localSize() entries, each < C.size()); must outlive this object
-  /// @param C stiffness per phase, lamina order (Pa)
+  /// @param C stiffness per phase, lamina order (Pa); must outlive this object
   /// @param dist the slab decomposition (must outlive this object)
   StartResidual(const Grid& grid, const std::vector<std::int32_t>& phase,
                 const std::vector<materials::Stiffness>& C, const Distribution& dist);
@@ -50,8 +50,8 @@ public:
 private:
   Grid grid_;
   const Distribution& dist_;
-  const std::vector<std::int32_t>& phase_; // this slab's voxels
-  std::vector<double> C_;                  // 36 per phase, row-major, lamina order
+  const std::vector<std::int32_t>& phase_;     // this slab's voxels
+  const std::vector<materials::Stiffness>& C_; // per phase, lamina order
   // per voxel row r = (i + 1) n1 + j of planes i = -1 (halo) .. nx-1: its
   // phase if all its voxels share it, else -1
   std::vector<std::int32_t> row_phase_;
