@@ -17,8 +17,10 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
   phase_lo_.resize(dist.planeSize());
   std::vector<std::int32_t> unused(dist.planeSize());
   dist.exchangeHalo(phase_.data(), phase_lo_.data(), unused.data());
-  halo_lo_.resize(3 * dist.planeSize());
-  halo_hi_.resize(3 * dist.planeSize());
+  for (auto* halo : {&work_d_.halo_lo, &work_d_.halo_hi})
+    halo->resize(3 * dist.planeSize());
+  for (auto* halo : {&work_f_.halo_lo, &work_f_.halo_hi})
+    halo->resize(3 * dist.planeSize());
   for (const auto& c : C)
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
@@ -33,6 +35,7 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
     lame_.push_back(is_iso ? lambda : 0.0);
     lame_.push_back(is_iso ? mu : 0.0);
   }
+  lame_f_.assign(lame_.begin(), lame_.end());
   for (std::int32_t p : phase_lo_)
     LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < C.size(), "phase index ", p,
                  " has no stiffness");
@@ -52,17 +55,35 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
         aniso_k_.push_back(static_cast<std::int32_t>(k));
   }
   aniso_start_.push_back(aniso_k_.size());
-  // planes_ is sized by apply() for the number of threads it runs with
+  // the stress planes are sized by apply() for the number of threads it runs with
+}
+
+template <>
+CellOperator::Work<double>& CellOperator::work<double>() const {
+  return work_d_;
+}
+template <>
+CellOperator::Work<float>& CellOperator::work<float>() const {
+  return work_f_;
+}
+template <>
+const double* CellOperator::lame<double>() const {
+  return lame_.data();
+}
+template <>
+const float* CellOperator::lame<float>() const {
+  return lame_f_.data();
 }
 
 // Row j of component c of node plane p (local; -1 and nx are the halo planes).
-const double* CellOperator::nodeRow(const double* u, int c, int p, int j) const {
+template <class T>
+const T* CellOperator::nodeRow(const T* u, int c, int p, int j) const {
   const std::size_t n2 = static_cast<std::size_t>(grid_.n[2]), plane = dist_.planeSize();
   const std::size_t off = static_cast<std::size_t>(c) * plane + static_cast<std::size_t>(j) * n2;
   if (p < 0)
-    return halo_lo_.data() + off;
+    return work<T>().halo_lo.data() + off;
   if (p >= dist_.nx())
-    return halo_hi_.data() + off;
+    return work<T>().halo_hi.data() + off;
   return u + static_cast<std::size_t>(c) * dist_.localSize() + static_cast<std::size_t>(p) * plane +
          static_cast<std::size_t>(j) * n2;
 }
@@ -72,14 +93,14 @@ const double* CellOperator::nodeRow(const double* u, int c, int p, int j) const 
 // The strain comes from the shared stencil (stencil.hpp: column sums of the
 // four node rows in scratch rows 0-8, finished along z per voxel; 10
 // additions per component instead of 21).
-void CellOperator::stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S,
-                               double* acc, double* energy, double* scratch) const {
+template <class T>
+void CellOperator::stressPlane(int i, const T* u, const std::array<T, 6>& E, T* S, double* acc,
+                               double* energy, T* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t P = componentStride();
   const std::size_t L = stencil::rowLength(grid_); // one wrapped column
   const std::int32_t* phase =
       i < 0 ? phase_lo_.data() : phase_.data() + static_cast<std::size_t>(i) * dist_.planeSize();
-  const stencil::RowSums sums(scratch, L, grid_);
   for (int j = 0; j < n1; ++j) {
     const int j1 = (j + 1 == n1) ? 0 : j + 1;
     if (u) {
@@ -100,7 +121,7 @@ void CellOperator::stressPlane(int i, const double* u, const std::array<double, 
     for (int k = 0; k < n2; ++k) {
       const double* sv = &uniform_[7 * static_cast<std::size_t>(phase[row + k])];
       for (int a = 0; a < 6; ++a) {
-        S[a * P + row + k] = sv[a];
+        S[a * P + row + k] = static_cast<T>(sv[a]);
         if (acc)
           acc[a] += sv[a];
       }
@@ -125,29 +146,33 @@ void CellOperator::stress6x6(std::size_t ph, const double e[6], double sv[6]) co
 // anisotropic phase, whose voxels anisotropicVoxels() sets afterwards), so
 // the loop over the voxels has no branch and no indirection and runs in
 // SIMD lanes (omp simd lets the sums of <sigma> and the energy be reordered).
-void CellOperator::isotropicRow(const std::int32_t* phase, const std::array<double, 6>& E,
-                                double* S, double* acc, double* energy, double* scratch) const {
+template <class T>
+void CellOperator::isotropicRow(const std::int32_t* phase, const std::array<T, 6>& E, T* S,
+                                double* acc, double* energy, T* scratch) const {
   const int n2 = grid_.n[2];
   const std::size_t P = componentStride();
   const std::size_t L = stencil::rowLength(grid_);
-  double* lam = scratch + 9 * L;
-  double* mu = scratch + 10 * L;
+  T* lam = scratch + 9 * L;
+  T* mu = scratch + 10 * L;
+  const T* lame_p = lame<T>();
   for (int k = 0; k < n2; ++k) {
     const std::size_t ph = static_cast<std::size_t>(phase[k]);
-    lam[k] = lame_[2 * ph];
-    mu[k] = lame_[2 * ph + 1];
+    lam[k] = lame_p[2 * ph];
+    mu[k] = lame_p[2 * ph + 1];
   }
-  const stencil::RowSums sums(scratch, L, grid_);
-  const std::array<double, 6> Ek = E; // a local copy: the stores to S cannot alias it
-  double *S0 = S, *S1 = S + P, *S2 = S + 2 * P, *S3 = S + 3 * P, *S4 = S + 4 * P, *S5 = S + 5 * P;
-  double a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, en = 0;
+  const stencil::RowSums<T> sums(scratch, L, grid_);
+  const std::array<T, 6> Ek = E; // a local copy: the stores to S cannot alias it
+  T *S0 = S, *S1 = S + P, *S2 = S + 2 * P, *S3 = S + 3 * P, *S4 = S + 4 * P, *S5 = S + 5 * P;
+  // the row's sums in T (float: n2 / 4 terms per SIMD lane), added to the
+  // double accumulators per row
+  T a0 = 0, a1 = 0, a2 = 0, a3 = 0, a4 = 0, a5 = 0, en = 0;
 #pragma omp simd reduction(+ : a0, a1, a2, a3, a4, a5, en)
   for (int k = 0; k < n2; ++k) {
-    double e0, e1, e2, e3, e4, e5;
+    T e0, e1, e2, e3, e4, e5;
     stencil::strainAt(sums, Ek, k, e0, e1, e2, e3, e4, e5);
-    const double lt = lam[k] * (e0 + e1 + e2), m2 = 2 * mu[k];
-    const double s0 = lt + m2 * e0, s1 = lt + m2 * e1, s2 = lt + m2 * e2;
-    const double s3 = mu[k] * e3, s4 = mu[k] * e4, s5 = mu[k] * e5;
+    const T lt = lam[k] * (e0 + e1 + e2), m2 = 2 * mu[k];
+    const T s0 = lt + m2 * e0, s1 = lt + m2 * e1, s2 = lt + m2 * e2;
+    const T s3 = mu[k] * e3, s4 = mu[k] * e4, s5 = mu[k] * e5;
     S0[k] = s0;
     S1[k] = s1;
     S2[k] = s2;
@@ -177,22 +202,25 @@ void CellOperator::isotropicRow(const std::int32_t* phase, const std::array<doub
 // The voxels of anisotropic phases in voxel row @p row_index (isotropicRow
 // left them zero stress): strain from the same column sums, the 6x6 product,
 // and their share of <sigma> and of the energy.
+template <class T>
 void CellOperator::anisotropicVoxels(std::size_t row_index, const std::int32_t* phase,
-                                     const std::array<double, 6>& E, double* S, double* acc,
-                                     double* energy, const double* scratch) const {
+                                     const std::array<T, 6>& E, T* S, double* acc, double* energy,
+                                     const T* scratch) const {
   const std::size_t begin = aniso_start_[row_index], end = aniso_start_[row_index + 1];
   if (begin == end)
     return;
   const std::size_t P = componentStride();
-  const stencil::RowSums sums(scratch, stencil::rowLength(grid_), grid_);
+  const stencil::RowSums<T> sums(scratch, stencil::rowLength(grid_), grid_);
   for (std::size_t at = begin; at < end; ++at) {
     const int k = aniso_k_[at];
-    double e[6], sv[6];
-    stencil::strainAt(sums, E, k, e[0], e[1], e[2], e[3], e[4], e[5]);
+    T et[6];
+    stencil::strainAt(sums, E, k, et[0], et[1], et[2], et[3], et[4], et[5]);
+    const double e[6] = {et[0], et[1], et[2], et[3], et[4], et[5]};
+    double sv[6];
     stress6x6(static_cast<std::size_t>(phase[k]), e, sv);
     double w = 0;
     for (int a = 0; a < 6; ++a) {
-      S[a * P + static_cast<std::size_t>(k)] = sv[a];
+      S[a * P + static_cast<std::size_t>(k)] = static_cast<T>(sv[a]);
       w += sv[a] * e[a];
       if (acc)
         acc[a] += sv[a];
@@ -208,17 +236,17 @@ void CellOperator::anisotropicVoxels(std::size_t row_index, const std::int32_t* 
 // voxel below it and corner 0 of the voxel above it along each axis. The
 // sum factorises like the gradient: across x (prev -/+ cur), then across y
 // (rows j-1, j), then across z (voxels k-1, k).
-void CellOperator::divergencePlane(int i, const double* prev, const double* cur, double* f,
-                                   double* scratch) const {
+template <class T>
+void CellOperator::divergencePlane(int i, const T* prev, const T* cur, T* f, T* scratch) const {
   const int n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t N = dist_.localSize(), P = componentStride();
   const std::size_t block = stencil::kXCombinations * stencil::rowLength(grid_);
   // the x-combinations of voxel rows j (cj) and j-1 (cm), rolled along y
-  double* cj = scratch;
-  double* cm = scratch + block;
-  auto combine = [&](int j, double* out) {
+  T* cj = scratch;
+  T* cm = scratch + block;
+  auto combine = [&](int j, T* out) {
     const std::size_t rj = static_cast<std::size_t>(j) * n2;
-    const double *pj[6], *qj[6];
+    const T *pj[6], *qj[6];
     for (int a = 0; a < 6; ++a) {
       pj[a] = prev + a * P + rj;
       qj[a] = cur + a * P + rj;
@@ -229,7 +257,7 @@ void CellOperator::divergencePlane(int i, const double* prev, const double* cur,
   for (int j = 0; j < n1; ++j) {
     combine(j, cj);
     const std::size_t row = (static_cast<std::size_t>(i) * n1 + j) * n2;
-    double* const fr[3] = {f + row, f + N + row, f + 2 * N + row};
+    T* const fr[3] = {f + row, f + N + row, f + 2 * N + row};
     stencil::divergenceFromCombinations(cj, cm, grid_, fr);
     std::swap(cj, cm);
   }
@@ -249,9 +277,24 @@ std::size_t CellOperator::planeStride() const {
 
 void CellOperator::apply(const double* u, const std::array<double, 6>& E, double* f,
                          std::array<double, 6>* average, double* energy) const {
+  applyImpl(u, E, f, average, energy);
+}
+
+void CellOperator::apply(const float* u, const std::array<double, 6>& E, float* f,
+                         std::array<double, 6>* average, double* energy) const {
+  applyImpl(u, E, f, average, energy);
+}
+
+template <class T>
+void CellOperator::applyImpl(const T* u, const std::array<double, 6>& E, T* f,
+                             std::array<double, 6>* average, double* energy) const {
   const int n0 = dist_.nx(); // this slab's planes
+  Work<T>& work = this->work<T>();
   if (u)
-    dist_.exchangeHalo(u, 3, halo_lo_.data(), halo_hi_.data());
+    dist_.exchangeHalo(u, 3, work.halo_lo.data(), work.halo_hi.data());
+  std::array<T, 6> Et;
+  for (std::size_t a = 0; a < 6; ++a)
+    Et[a] = static_cast<T>(E[a]);
   if (!u) { // per phase: the stress C_p E and the energy density E : C_p : E
     const std::size_t phases = C_.size() / 36;
     uniform_.resize(7 * phases);
@@ -267,8 +310,8 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
   }
   const std::size_t P = planeStride();
   const int nt = std::max(1, std::min(omp_get_max_threads(), n0));
-  if (planes_.size() < 2 * P * static_cast<std::size_t>(nt))
-    planes_.assign(2 * P * static_cast<std::size_t>(nt), 0.0);
+  if (work.planes.size() < 2 * P * static_cast<std::size_t>(nt))
+    work.planes.assign(2 * P * static_cast<std::size_t>(nt), T(0));
   double total[6] = {0, 0, 0, 0, 0, 0};
   double total_energy = 0;
   // The x-planes are cut into slabs (4 per thread, handed out dynamically, so
@@ -282,17 +325,17 @@ void CellOperator::apply(const double* u, const std::array<double, 6>& E, double
     double acc[6] = {0, 0, 0, 0, 0, 0};
     double my_energy = 0;
     double* en = energy ? &my_energy : nullptr;
-    std::vector<double> scratch(2 * stencil::kXCombinations * stencil::rowLength(grid_));
+    std::vector<T> scratch(2 * stencil::kXCombinations * stencil::rowLength(grid_));
 #pragma omp for schedule(dynamic, 1) nowait
     for (int slab = 0; slab < slabs; ++slab) {
       const int begin = static_cast<int>(static_cast<long>(n0) * slab / slabs);
       const int end = static_cast<int>(static_cast<long>(n0) * (slab + 1) / slabs);
-      double* prev = planes_.data() + 2 * P * static_cast<std::size_t>(t);
-      double* cur = prev + P;
+      T* prev = work.planes.data() + 2 * P * static_cast<std::size_t>(t);
+      T* cur = prev + P;
       if (f && begin < end)
-        stressPlane(begin - 1, u, E, prev, nullptr, nullptr, scratch.data());
+        stressPlane(begin - 1, u, Et, prev, nullptr, nullptr, scratch.data());
       for (int i = begin; i < end; ++i) {
-        stressPlane(i, u, E, cur, average ? acc : nullptr, en, scratch.data());
+        stressPlane(i, u, Et, cur, average ? acc : nullptr, en, scratch.data());
         if (f)
           divergencePlane(i, prev, cur, f, scratch.data());
         std::swap(prev, cur);

@@ -57,40 +57,66 @@ public:
   ///   which for E = 0 is u^T A u (CG needs it, and it costs no extra pass)
   void apply(const double* u, const std::array<double, 6>& E, double* f,
              std::array<double, 6>* average, double* energy = nullptr) const;
+  /// The same in single precision, for conjugate gradients at loose
+  /// tolerances: strains, stresses and forces in float (twice the SIMD lanes,
+  /// half the memory traffic), the composite voxels' 6x6 products in double;
+  /// <sigma> and the energy are summed in float along one voxel row (n2
+  /// voxels) and in double across rows and ranks.
+  void apply(const float* u, const std::array<double, 6>& E, float* f,
+             std::array<double, 6>* average, double* energy = nullptr) const;
 
   /// @return the grid
   const Grid& grid() const { return grid_; }
 
 private:
+  // the scratch fields of one precision: halo node planes of u and per
+  // thread two voxel planes of stress (6 per voxel)
+  template <class T>
+  struct Work {
+    std::vector<T> halo_lo, halo_hi; // node planes x0 - 1, x0 + nx of u
+    std::vector<T> planes;           // per thread: two voxel planes of stress
+  };
+  template <class T>
+  Work<T>& work() const;
+  template <class T>
+  const T* lame() const;
+  template <class T>
+  void applyImpl(const T* u, const std::array<double, 6>& E, T* f, std::array<double, 6>* average,
+                 double* energy) const;
   std::size_t componentStride() const;
   std::size_t planeStride() const;
-  const double* nodeRow(const double* u, int c, int p, int j) const;
-  void stressPlane(int i, const double* u, const std::array<double, 6>& E, double* S, double* acc,
-                   double* energy, double* scratch) const;
-  void isotropicRow(const std::int32_t* phase, const std::array<double, 6>& E, double* S,
-                    double* acc, double* energy, double* scratch) const;
+  template <class T>
+  const T* nodeRow(const T* u, int c, int p, int j) const;
+  template <class T>
+  void stressPlane(int i, const T* u, const std::array<T, 6>& E, T* S, double* acc, double* energy,
+                   T* scratch) const;
+  template <class T>
+  void isotropicRow(const std::int32_t* phase, const std::array<T, 6>& E, T* S, double* acc,
+                    double* energy, T* scratch) const;
+  template <class T>
   void anisotropicVoxels(std::size_t row_index, const std::int32_t* phase,
-                         const std::array<double, 6>& E, double* S, double* acc, double* energy,
-                         const double* scratch) const;
+                         const std::array<T, 6>& E, T* S, double* acc, double* energy,
+                         const T* scratch) const;
   void stress6x6(std::size_t ph, const double e[6], double sv[6]) const;
-  void divergencePlane(int i, const double* prev, const double* cur, double* f,
-                       double* scratch) const;
+  template <class T>
+  void divergencePlane(int i, const T* prev, const T* cur, T* f, T* scratch) const;
 
   Grid grid_;
   const Distribution& dist_;
-  std::vector<std::int32_t> phase_;               // this slab's voxels
-  std::vector<std::int32_t> phase_lo_;            // voxel plane x0 - 1 (halo)
-  mutable std::vector<double> halo_lo_, halo_hi_; // node planes x0 - 1, x0 + nx of u
-  std::vector<double> C_;                         // 36 per phase, row-major, lamina order
-  std::vector<char> iso_;                         // per phase: isotropic (use lame_)
-  std::vector<double> lame_; // per phase: lambda, mu (0, 0 for an anisotropic phase)
+  std::vector<std::int32_t> phase_;    // this slab's voxels
+  std::vector<std::int32_t> phase_lo_; // voxel plane x0 - 1 (halo)
+  std::vector<double> C_;              // 36 per phase, row-major, lamina order
+  std::vector<char> iso_;              // per phase: isotropic (use lame_)
+  std::vector<double> lame_;           // per phase: lambda, mu (0, 0 for an anisotropic phase)
+  std::vector<float> lame_f_;          // the same rounded to float
   // The voxels of anisotropic phases (composite voxels: a few per cent), per
   // voxel row r = (i + 1) n1 + j of planes i = -1 (halo) .. nx-1: their z
   // indices aniso_k_[aniso_start_[r] .. aniso_start_[r + 1]). isotropicRow
   // gives them zero stress; anisotropicVoxels then sets theirs.
   std::vector<std::size_t> aniso_start_;
   std::vector<std::int32_t> aniso_k_;
-  mutable std::vector<double> planes_;  // per thread: two voxel planes of stress (6 per voxel)
+  mutable Work<double> work_d_;         // double-precision apply()
+  mutable Work<float> work_f_;          // single-precision apply()
   mutable std::vector<double> uniform_; // apply() with u = 0: per phase C_p E and E : C_p : E
 };
 

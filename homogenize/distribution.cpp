@@ -106,31 +106,55 @@ const T* planeOf(const T* field, std::size_t local, std::size_t plane, int c, in
 }
 } // namespace
 
-void Distribution::exchangeHalo(const double* field, int comps, double* lo, double* hi) const {
-  const std::size_t L = localSize();
-  if (!distributed()) {
+namespace {
+#ifdef LAMINA_WITH_MPI
+template <class T>
+MPI_Datatype mpiType();
+template <>
+MPI_Datatype mpiType<double>() {
+  return MPI_DOUBLE;
+}
+template <>
+MPI_Datatype mpiType<float>() {
+  return MPI_FLOAT;
+}
+#endif
+
+// exchangeHalo of double or float fields
+template <class T>
+void exchangeHaloOf(const Distribution& d, const T* field, int comps, T* lo, T* hi) {
+  const std::size_t L = d.localSize(), plane = d.planeSize();
+  const int nx = d.nx();
+  if (!d.distributed()) {
     for (int c = 0; c < comps; ++c) {
-      std::memcpy(lo + c * plane_, planeOf(field, L, plane_, c, nx_ - 1), plane_ * sizeof(double));
-      std::memcpy(hi + c * plane_, planeOf(field, L, plane_, c, 0), plane_ * sizeof(double));
+      std::memcpy(lo + c * plane, planeOf(field, L, plane, c, nx - 1), plane * sizeof(T));
+      std::memcpy(hi + c * plane, planeOf(field, L, plane, c, 0), plane * sizeof(T));
     }
     return;
   }
 #ifdef LAMINA_WITH_MPI
-  const int prev = (rank_ + ranks_ - 1) % ranks_, next = (rank_ + 1) % ranks_;
-  std::vector<double> first(comps * plane_), last(comps * plane_);
+  const int prev = (d.rank() + d.ranks() - 1) % d.ranks(), next = (d.rank() + 1) % d.ranks();
+  std::vector<T> first(comps * plane), last(comps * plane);
   for (int c = 0; c < comps; ++c) {
-    std::memcpy(first.data() + c * plane_, planeOf(field, L, plane_, c, 0),
-                plane_ * sizeof(double));
-    std::memcpy(last.data() + c * plane_, planeOf(field, L, plane_, c, nx_ - 1),
-                plane_ * sizeof(double));
+    std::memcpy(first.data() + c * plane, planeOf(field, L, plane, c, 0), plane * sizeof(T));
+    std::memcpy(last.data() + c * plane, planeOf(field, L, plane, c, nx - 1), plane * sizeof(T));
   }
-  const int count = static_cast<int>(comps * plane_);
+  const int count = static_cast<int>(comps * plane);
   // my last plane is the next rank's lo; my first plane is the previous rank's hi
-  MPI_Sendrecv(last.data(), count, MPI_DOUBLE, next, 1, lo, count, MPI_DOUBLE, prev, 1,
+  MPI_Sendrecv(last.data(), count, mpiType<T>(), next, 1, lo, count, mpiType<T>(), prev, 1,
                MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-  MPI_Sendrecv(first.data(), count, MPI_DOUBLE, prev, 2, hi, count, MPI_DOUBLE, next, 2,
+  MPI_Sendrecv(first.data(), count, mpiType<T>(), prev, 2, hi, count, mpiType<T>(), next, 2,
                MPI_COMM_WORLD, MPI_STATUS_IGNORE);
 #endif
+}
+} // namespace
+
+void Distribution::exchangeHalo(const double* field, int comps, double* lo, double* hi) const {
+  exchangeHaloOf(*this, field, comps, lo, hi);
+}
+
+void Distribution::exchangeHalo(const float* field, int comps, float* lo, float* hi) const {
+  exchangeHaloOf(*this, field, comps, lo, hi);
 }
 
 void Distribution::exchangeHalo(const std::int32_t* field, std::int32_t* lo,

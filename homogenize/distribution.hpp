@@ -51,6 +51,8 @@ public:
   /// each: @p lo receives plane x0 - 1 and @p hi plane x0 + nx (comps
   /// planes each, component-major). Serial: copies the wrapped planes.
   void exchangeHalo(const double* field, int comps, double* lo, double* hi) const;
+  /// Same for float fields (the single-precision cell operator).
+  void exchangeHalo(const float* field, int comps, float* lo, float* hi) const;
   /// Same for one int32 field.
   void exchangeHalo(const std::int32_t* field, std::int32_t* lo, std::int32_t* hi) const;
   /// Copies rank 0's @p v (size and values) to every rank (no-op when serial).

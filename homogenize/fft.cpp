@@ -44,12 +44,17 @@ void freeField(void* p) {
 }
 } // namespace
 
-AlignedBuffer::AlignedBuffer(std::size_t count)
-    : data_(static_cast<double*>(allocateField(count * sizeof(double)))), size_(count) {}
+template <class T>
+AlignedArray<T>::AlignedArray(std::size_t count)
+    : data_(static_cast<T*>(allocateField(count * sizeof(T)))), size_(count) {}
 
-void AlignedBuffer::Free::operator()(double* p) const {
+template <class T>
+void AlignedArray<T>::Free::operator()(T* p) const {
   freeField(p);
 }
+
+template class AlignedArray<double>;
+template class AlignedArray<float>;
 
 namespace {
 // FFTW's planner is not thread-safe and fftw_init_threads must run once.
@@ -389,7 +394,8 @@ void VectorFft::eachRow(F&& f) {
     run(spectrum<double>());
 }
 
-void VectorFft::forward(const double* r) {
+template <class V>
+void VectorFft::forward(const V* r) {
   const int n2 = grid_.n[2];
   eachRow([&](auto* dst, std::size_t off) {
     using T = std::remove_pointer_t<decltype(dst)>;
@@ -399,14 +405,16 @@ void VectorFft::forward(const double* r) {
   plans_->forward(buffer_, chunk_);
 }
 
-void VectorFft::forwardUpdate(double* r, double alpha, const double* w) {
+template <class V>
+void VectorFft::forwardUpdate(V* r, double alpha, const V* w) {
   const int n2 = grid_.n[2];
+  const V a = static_cast<V>(alpha);
   eachRow([&](auto* dst, std::size_t off) {
     using T = std::remove_pointer_t<decltype(dst)>;
-    double* ro = r + off;
-    const double* wo = w + off;
+    V* ro = r + off;
+    const V* wo = w + off;
     for (int k = 0; k < n2; ++k) {
-      const double v = ro[k] - alpha * wo[k];
+      const V v = ro[k] - a * wo[k];
       ro[k] = v;
       dst[k] = static_cast<T>(v);
     }
@@ -414,32 +422,46 @@ void VectorFft::forwardUpdate(double* r, double alpha, const double* w) {
   plans_->forward(buffer_, chunk_);
 }
 
-void VectorFft::backward(double* z) {
+template <class V>
+void VectorFft::backward(V* z) {
   const int n2 = grid_.n[2];
   plans_->backward(buffer_, chunk_);
   eachRow([&](auto* src, std::size_t off) {
     for (int k = 0; k < n2; ++k)
-      z[off + k] = static_cast<double>(src[k]);
+      z[off + k] = static_cast<V>(src[k]);
   });
 }
 
-void VectorFft::backwardUpdate(double* p, double beta, double* x, double alpha) {
+template <class V>
+void VectorFft::backwardUpdate(V* p, double beta, V* x, double alpha) {
   const int n2 = grid_.n[2];
+  const V a = static_cast<V>(alpha), b = static_cast<V>(beta);
   plans_->backward(buffer_, chunk_);
   eachRow([&](auto* src, std::size_t off) {
-    double* po = p + off;
+    V* po = p + off;
     if (x) { // x += alpha p with the old p, read here anyway
-      double* xo = x + off;
+      V* xo = x + off;
       for (int k = 0; k < n2; ++k) {
-        const double pk = po[k];
-        xo[k] += alpha * pk;
-        po[k] = static_cast<double>(src[k]) + beta * pk;
+        const V pk = po[k];
+        xo[k] += a * pk;
+        po[k] = static_cast<V>(src[k]) + b * pk;
       }
       return;
     }
     for (int k = 0; k < n2; ++k)
-      po[k] = static_cast<double>(src[k]) + beta * po[k];
+      po[k] = static_cast<V>(src[k]) + b * po[k];
   });
 }
+
+// double fields (double-precision solves, the nonlinear solver, the
+// dispersion tensor) and float fields (single-precision linear solves)
+#define LAMINA_FFT_FIELDS(V)                                                                       \
+  template void VectorFft::forward<V>(const V*);                                                   \
+  template void VectorFft::forwardUpdate<V>(V*, double, const V*);                                 \
+  template void VectorFft::backward<V>(V*);                                                        \
+  template void VectorFft::backwardUpdate<V>(V*, double, V*, double);
+LAMINA_FFT_FIELDS(double)
+LAMINA_FFT_FIELDS(float)
+#undef LAMINA_FFT_FIELDS
 
 } // namespace lamina::homogenize

@@ -49,18 +49,25 @@ public:
   static std::string wisdomPath();
 
   /// Loads @p r (3 components of the local slab, component-major, unpadded:
-  /// dist.localSize() doubles each) and transforms it into the spectrum.
-  void forward(const double* r);
+  /// dist.localSize() values each) and transforms it into the spectrum.
+  /// V (the fields' type: double, or float for the linear solver's
+  /// single-precision vectors) need not match precision().
+  template <class V>
+  void forward(const V* r);
   /// Transforms the spectrum back (destroying it) and stores it into @p z
   /// (same layout as forward's input).
-  void backward(double* z);
+  template <class V>
+  void backward(V* z);
   /// The conjugate-gradient update r -= alpha w fused with forward(r): one
   /// pass over the fields.
-  void forwardUpdate(double* r, double alpha, const double* w);
+  /// (With float fields the update runs in float.)
+  template <class V>
+  void forwardUpdate(V* r, double alpha, const V* w);
   /// backward() fused with the conjugate-gradient updates x += alpha p (when
   /// @p x is not null; the old p) and p = z + beta p (z is never stored):
   /// one pass that reads p once for both.
-  void backwardUpdate(double* p, double beta, double* x = nullptr, double alpha = 0);
+  template <class V>
+  void backwardUpdate(V* p, double beta, V* x = nullptr, double alpha = 0);
 
   /// @return the precision
   Precision precision() const { return precision_; }

@@ -78,7 +78,8 @@ double GreenOperator::solveModes() const {
   return rz;
 }
 
-double GreenOperator::apply(const double* r, double* z) const {
+template <class V>
+double GreenOperator::apply(const V* r, V* z) const {
   fft_.forward(r);
   double rz = fft_.precision() == Precision::Single ? solveModes<float>() : solveModes<double>();
   fft_.backward(z);
@@ -86,8 +87,9 @@ double GreenOperator::apply(const double* r, double* z) const {
   return rz;
 }
 
-double GreenOperator::step(double* r, double alpha, const double* w, double* x, double* p,
-                           double rz, double rz_stop) const {
+template <class V>
+double GreenOperator::step(V* r, double alpha, const V* w, V* x, V* p, double rz,
+                           double rz_stop) const {
   fft_.forwardUpdate(r, alpha, w);
   double rz_new =
       fft_.precision() == Precision::Single ? solveModes<float>() : solveModes<double>();
@@ -95,14 +97,22 @@ double GreenOperator::step(double* r, double alpha, const double* w, double* x, 
   if (rz_new <= rz_stop) { // converged (every rank sees the same sum)
     if (x) {
       const std::size_t n = 3 * dist_.localSize();
+      const V a = static_cast<V>(alpha);
 #pragma omp parallel for schedule(static)
       for (std::size_t i = 0; i < n; ++i)
-        x[i] += alpha * p[i];
+        x[i] += a * p[i];
     }
     return rz_new;
   }
   fft_.backwardUpdate(p, rz_new / rz, x, alpha);
   return rz_new;
 }
+
+#define LAMINA_GREEN_FIELDS(V)                                                                     \
+  template double GreenOperator::apply<V>(const V*, V*) const;                                     \
+  template double GreenOperator::step<V>(V*, double, const V*, V*, V*, double, double) const;
+LAMINA_GREEN_FIELDS(double)
+LAMINA_GREEN_FIELDS(float)
+#undef LAMINA_GREEN_FIELDS
 
 } // namespace lamina::homogenize

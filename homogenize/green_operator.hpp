@@ -15,7 +15,8 @@
 ///
 /// In single precision the transforms and the mode solve run in float: a
 /// preconditioner perturbed by ~1e-7 relative, which conjugate gradients
-/// tolerate down to residuals far below the tolerances it is used for.
+/// tolerate down to residuals far below the tolerances it is used for. The
+/// linear solver then hands it float fields too (r^T z is summed in double).
 
 #include "homogenize/fft.hpp"
 
@@ -32,9 +33,11 @@ public:
   /// @param dist the distribution of the fields (sums of r^T z over ranks)
   GreenOperator(const Grid& grid, double lambda0, double mu0, VectorFft& fft,
                 const Distribution& dist);
-  /// z = K0^+ r (3 local slabs each; r is kept, z may not alias r).
+  /// z = K0^+ r (3 local slabs each; r is kept, z may not alias r). V:
+  /// double, or float (the single-precision CG vectors of the linear solver).
   /// @return r^T z over all ranks, summed in Fourier space (Parseval)
-  double apply(const double* r, double* z) const;
+  template <class V>
+  double apply(const V* r, V* z) const;
   /// One fused conjugate-gradient step around the preconditioner:
   /// r -= alpha w (x += alpha p if @p x is not null), z = K0^+ r, and
   /// p = z + (r^T z / rz) p, in two passes over the fields besides the FFTs.
@@ -42,8 +45,8 @@ public:
   /// use z or p again: the inverse transforms are skipped, only x += alpha p
   /// is done (p is left as it was).
   /// @return the new r^T z over all ranks (NaN/Inf is left to the caller)
-  double step(double* r, double alpha, const double* w, double* x, double* p, double rz,
-              double rz_stop = -1) const;
+  template <class V>
+  double step(V* r, double alpha, const V* w, V* x, V* p, double rz, double rz_stop = -1) const;
   /// @return the precision of the transforms
   Precision precision() const { return fft_.precision(); }
 

@@ -26,27 +26,31 @@ struct Grid {
   }
 };
 
-/// Owning array of doubles, 64-byte aligned (2 MiB and offered to huge
-/// pages from 2 MiB up; fft.cpp), no copies.
-class AlignedBuffer {
+/// Owning array of T (double or float), 64-byte aligned (2 MiB and offered
+/// to huge pages from 2 MiB up; fft.cpp), no copies.
+template <class T>
+class AlignedArray {
 public:
-  AlignedBuffer() = default;
-  /// Allocates @p count doubles (uninitialized); throws std::bad_alloc on failure.
-  explicit AlignedBuffer(std::size_t count);
+  AlignedArray() = default;
+  /// Allocates @p count values (uninitialized); throws std::bad_alloc on failure.
+  explicit AlignedArray(std::size_t count);
   /// @return the data pointer
-  double* data() { return data_.get(); }
+  T* data() { return data_.get(); }
   /// @return the data pointer
-  const double* data() const { return data_.get(); }
-  /// @return the number of doubles
+  const T* data() const { return data_.get(); }
+  /// @return the number of values
   std::size_t size() const { return size_; }
 
 private:
   struct Free {
-    void operator()(double* p) const;
+    void operator()(T* p) const;
   };
-  std::unique_ptr<double, Free> data_;
+  std::unique_ptr<T, Free> data_;
   std::size_t size_ = 0;
 };
+
+/// Owning array of doubles (see AlignedArray).
+using AlignedBuffer = AlignedArray<double>;
 
 /// A displacement-like field: 3 components of grid.size() doubles each,
 /// stored one component after the other (the layout the batched FFT takes).

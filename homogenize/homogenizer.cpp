@@ -15,6 +15,7 @@
 #include <limits>
 #include <memory>
 #include <sstream>
+#include <type_traits>
 
 namespace lamina::homogenize {
 
@@ -60,6 +61,12 @@ Precision autoPrecision(double tol) {
 namespace {
 
 /// The pieces of one solve, set up once and reused by the six load cases.
+/// V: the type of the CG vectors and of the operator's arithmetic, float
+/// when the transforms are single precision (tol >= 1e-6: the float
+/// rounding, ~6e-8 relative, sits far below the residual CG has to reach),
+/// else double. The scalars (alpha, beta) and the sums over the grid
+/// (p^T A p, r^T z, <C D p>, x^T r) stay double.
+template <class V>
 class CgSolver {
 public:
   CgSolver(std::size_t local, const CellOperator& A, const StartResidual& b, const GreenOperator& M,
@@ -73,10 +80,10 @@ public:
   /// A p_k, so x is formed only when asked for.
   LoadCaseResult solve(const std::array<double, 6>& E, double energy_E, const Options& opt,
                        const std::function<void(int, double)>& monitor,
-                       std::array<double, 6>& sigma, double* x) {
-    double* r = r_.data();
-    double* p = p_.data();
-    double* w = w_.data();
+                       std::array<double, 6>& sigma, V* x) {
+    V* r = r_.data();
+    V* p = p_.data();
+    V* w = w_.data();
     const std::size_t n = n_;
     // r = b = -D^T C E (x = 0) and sigma = <C E>: the operator's values with
     // u = 0, formed only next to interfaces (start_residual.hpp)
@@ -127,23 +134,23 @@ public:
     // relative at 128^3, enough to tell thread counts or ranks apart). With
     // single-precision transforms (tol >= 1e-6) that rounding is 5 decades
     // below what the tolerance leaves in C: the pass is skipped.
-    if (x && res.iterations > 0 && M_.precision() == Precision::Double)
-      A_.apply(x, E, nullptr, &sigma);
+    if (x && res.iterations > 0 && std::is_same_v<V, double>)
+      A_.apply(x, E, static_cast<V*>(nullptr), &sigma);
     return res;
   }
 
   /// dots[j] = x_j^T r (r: the last solve's final residual), j < count, summed
   /// over ranks, in one pass over r.
-  void residualDots(const std::vector<AlignedBuffer>& x, int count, double* dots) const {
-    const double* r = r_.data();
-    const double* xs[6] = {};
+  void residualDots(const std::vector<AlignedArray<V>>& x, int count, double* dots) const {
+    const V* r = r_.data();
+    const V* xs[6] = {};
     for (int j = 0; j < count; ++j)
       xs[j] = x[static_cast<std::size_t>(j)].data();
     double d[6] = {0, 0, 0, 0, 0, 0};
 #pragma omp parallel for schedule(static) reduction(+ : d[:6])
     for (std::size_t i = 0; i < n_; ++i)
       for (int j = 0; j < count; ++j)
-        d[j] += xs[j][i] * r[i];
+        d[j] += static_cast<double>(xs[j][i]) * static_cast<double>(r[i]);
     for (int j = 0; j < count; ++j)
       dots[j] = d[j];
     dist_.sum(dots, count);
@@ -156,7 +163,7 @@ private:
   const GreenOperator& M_;
   const Distribution& dist_;
   double ref_;
-  AlignedBuffer r_, p_, w_;
+  AlignedArray<V> r_, p_, w_;
 };
 
 } // namespace
@@ -189,6 +196,69 @@ Homogenizer::Homogenizer(const Grid& grid, const Distribution& dist,
   }
   if (bad < phases)
     C_[static_cast<std::size_t>(bad)].validate("phase " + std::to_string(bad));
+}
+
+template <class V>
+void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, const GreenOperator& M,
+                             const materials::Stiffness& C0, Result& res, materials::Matrix6& C,
+                             materials::Matrix6& C_energy) {
+  CgSolver<V> cg(dist_.localSize(), A, b, M, dist_, static_cast<double>(res.voxels));
+  // displacements: all six for the energy estimate, one for a sink
+  const bool energy_form = opt_.estimate == Estimate::Energy;
+  std::vector<AlignedArray<V>> x;
+  for (int k = 0; k < (energy_form ? 6 : sink_ ? 1 : 0); ++k)
+    x.emplace_back(3 * dist_.localSize());
+
+  AlignedBuffer x_double; // float solves: x handed to the sink in double
+
+  // solve: six unit strains (lamina order, engineering shear) -> six columns
+  core::ProgressLine progress("homogenize", 6, opt_.quiet);
+  for (int k = 0; k < 6; ++k) {
+    std::array<double, 6> E{0, 0, 0, 0, 0, 0}, sigma{};
+    E[static_cast<std::size_t>(k)] = 1.0;
+    const double energy = C0.matrix()(k, k); // E^T C0 E for a unit E_k
+    auto monitor = [&](int it, double r) {
+      if (monitor_)
+        monitor_(k, it, r);
+      else {
+        std::ostringstream os;
+        os << "load case " << k + 1 << "/6, iteration " << it << ", residual " << r;
+        progress.update(k, os.str());
+      }
+    };
+    try {
+      V* xk = x.empty() ? nullptr : x[energy_form ? static_cast<std::size_t>(k) : 0].data();
+      res.cases[static_cast<std::size_t>(k)] = cg.solve(E, energy, opt_, monitor, sigma, xk);
+    } catch (const DivergenceError& e) {
+      throw DivergenceError("load case " + std::to_string(k + 1) + ": " + e.message());
+    } catch (const Error& e) {
+      throw Error("load case " + std::to_string(k + 1) + ": " + e.message());
+    }
+    for (int a = 0; a < 6; ++a)
+      C(a, k) = sigma[static_cast<std::size_t>(a)];
+    if (energy_form) { // C_jk = <sigma_k>_j - x_j^T r_k / N for the cases j <= k
+      double dots[6];
+      cg.residualDots(x, k + 1, dots);
+      for (int j = 0; j <= k; ++j)
+        C_energy(j, k) = C_energy(k, j) = C(j, k) - dots[j] / static_cast<double>(res.voxels);
+    }
+    if (sink_) {
+      const V* xk = x[energy_form ? static_cast<std::size_t>(k) : 0].data();
+      if constexpr (std::is_same_v<V, double>) {
+        sink_(k, xk);
+      } else { // the sink takes double fields
+        if (x_double.size() == 0)
+          x_double = AlignedBuffer(3 * dist_.localSize());
+        double* xd = x_double.data();
+        const std::size_t n = x_double.size();
+#pragma omp parallel for schedule(static)
+        for (std::size_t i = 0; i < n; ++i)
+          xd[i] = static_cast<double>(xk[i]);
+        sink_(k, xd);
+      }
+    }
+  }
+  progress.finish();
 }
 
 Result Homogenizer::run() {
@@ -250,54 +320,17 @@ Result Homogenizer::run() {
   const CellOperator A(grid_, phase_, C_, dist_);
   const StartResidual b(grid_, phase_, C_, dist_);
   const GreenOperator M(grid_, res.lambda0, res.mu0, fft, dist_);
-  CgSolver cg(dist_.localSize(), A, b, M, dist_, static_cast<double>(res.voxels));
-  // displacements: all six for the energy estimate, one for a sink
-  const bool energy_form = opt_.estimate == Estimate::Energy;
-  std::vector<AlignedBuffer> x;
-  for (int k = 0; k < (energy_form ? 6 : sink_ ? 1 : 0); ++k)
-    x.emplace_back(3 * dist_.localSize());
-
-  // solve: six unit strains (lamina order, engineering shear) -> six columns
-  core::ProgressLine progress("homogenize", 6, opt_.quiet);
   materials::Matrix6 C = materials::Matrix6::Zero(), C_energy = materials::Matrix6::Zero();
-  for (int k = 0; k < 6; ++k) {
-    std::array<double, 6> E{0, 0, 0, 0, 0, 0}, sigma{};
-    E[static_cast<std::size_t>(k)] = 1.0;
-    const double energy = C0.matrix()(k, k); // E^T C0 E for a unit E_k
-    auto monitor = [&](int it, double r) {
-      if (monitor_)
-        monitor_(k, it, r);
-      else {
-        std::ostringstream os;
-        os << "load case " << k + 1 << "/6, iteration " << it << ", residual " << r;
-        progress.update(k, os.str());
-      }
-    };
-    try {
-      double* xk = x.empty() ? nullptr : x[energy_form ? static_cast<std::size_t>(k) : 0].data();
-      res.cases[static_cast<std::size_t>(k)] = cg.solve(E, energy, opt_, monitor, sigma, xk);
-    } catch (const DivergenceError& e) {
-      throw DivergenceError("load case " + std::to_string(k + 1) + ": " + e.message());
-    } catch (const Error& e) {
-      throw Error("load case " + std::to_string(k + 1) + ": " + e.message());
-    }
-    for (int a = 0; a < 6; ++a)
-      C(a, k) = sigma[static_cast<std::size_t>(a)];
-    if (energy_form) { // C_jk = <sigma_k>_j - x_j^T r_k / N for the cases j <= k
-      double dots[6];
-      cg.residualDots(x, k + 1, dots);
-      for (int j = 0; j <= k; ++j)
-        C_energy(j, k) = C_energy(k, j) = C(j, k) - dots[j] / static_cast<double>(res.voxels);
-    }
-    if (sink_)
-      sink_(k, x[energy_form ? static_cast<std::size_t>(k) : 0].data());
-  }
-  progress.finish();
+  if (res.precision == Precision::Single)
+    solveCases<float>(A, b, M, C0, res, C, C_energy);
+  else
+    solveCases<double>(A, b, M, C0, res, C, C_energy);
 
   // output: raw and symmetrized C, diagnostics
   res.C_raw = materials::Stiffness(C);
   res.asymmetry = res.C_raw.asymmetry();
-  res.C = energy_form ? materials::Stiffness(C_energy) : res.C_raw.symmetrized();
+  res.C =
+      opt_.estimate == Estimate::Energy ? materials::Stiffness(C_energy) : res.C_raw.symmetrized();
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j)
       LAMINA_CHECK(std::isfinite(res.C(i, j)), "effective stiffness is not finite");

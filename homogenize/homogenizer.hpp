@@ -38,6 +38,10 @@
 
 namespace lamina::homogenize {
 
+class CellOperator;
+class GreenOperator;
+class StartResidual;
+
 /// How C is formed from the six load cases.
 enum class Estimate {
   Energy, ///< C_jk = <eps_j : C : eps_k>: error quadratic in the solver's (keeps 6 fields)
@@ -52,14 +56,15 @@ struct Options {
   int measure = -1;           ///< FFTW_MEASURE planning: 1 yes, 0 no, -1 auto (above 64^3 voxels)
   bool quiet = true;          ///< no progress line
   Estimate estimate = Estimate::Energy; ///< how C is formed
-  /// FFT precision of the preconditioner; unset: single when tol >= 1e-6
-  /// (autoPrecision), else double
+  /// Precision of the preconditioner's FFTs, the cell operator and the CG
+  /// vectors (sums over the grid and the CG scalars stay double); unset:
+  /// single when tol >= 1e-6 (autoPrecision), else double
   std::optional<Precision> precision;
 };
 
 /// The precision Options::precision leaves unset means for @p tol: single
-/// precision transforms down to tol 1e-6 (their rounding, ~1e-7 relative,
-/// stays two decades below the residual CG has to reach).
+/// precision down to tol 1e-6 (its rounding, ~1e-7 relative, stays two
+/// decades below the residual CG has to reach).
 Precision autoPrecision(double tol);
 
 /// Outcome of one load case.
@@ -132,6 +137,14 @@ public:
   Result run();
 
 private:
+  /// The six load cases with CG vectors of type V (float or double), the
+  /// operator A, the start residuals b and the preconditioner M: fills
+  /// res.cases and the columns of C (average stresses) and C_energy.
+  template <class V>
+  void solveCases(const CellOperator& A, const StartResidual& b, const GreenOperator& M,
+                  const materials::Stiffness& C0, Result& res, materials::Matrix6& C,
+                  materials::Matrix6& C_energy);
+
   Grid grid_;
   Distribution dist_;
   std::vector<std::int32_t> phase_;

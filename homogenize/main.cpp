@@ -110,7 +110,8 @@ enum class FftwPlan { Auto, Estimate, Measure };
 constexpr Choices<FftwPlan, 3> kPlans{
     {{"auto", FftwPlan::Auto}, {"estimate", FftwPlan::Estimate}, {"measure", FftwPlan::Measure}}};
 
-/// --precision: FFT precision of the preconditioner (Auto: from --tol).
+/// --precision: precision of the preconditioner's FFTs, the operator and the
+/// CG vectors (Auto: from --tol).
 enum class PrecisionChoice { Auto, Single, Double };
 constexpr Choices<PrecisionChoice, 3> kPrecisions{{{"auto", PrecisionChoice::Auto},
                                                    {"single", PrecisionChoice::Single},
@@ -142,7 +143,7 @@ struct Cli {
 
   /// @return true for a nonlinear run (a strain path or rate-dependent tangents)
   bool nonlinear() const { return path_given || !tangent.rates.empty(); }
-  /// @return true when the preconditioner's FFTs run in single precision
+  /// @return true when the FFTs, the operator and the CG vectors run in single precision
   bool single() const {
     return precision == PrecisionChoice::Single ||
            (precision == PrecisionChoice::Auto &&
@@ -179,8 +180,8 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
                  "residual, keeps 6 displacement fields) or stress (<sigma_k>, least memory)")
       ->check(CLI::IsMember(namesOf(kEstimates)));
   app.add_option("--precision", names.precision,
-                 "FFT precision of the preconditioner: auto (single when tol >= 1e-6), single, "
-                 "double")
+                 "precision of the FFTs, the operator and the CG vectors: auto (single when tol "
+                 ">= 1e-6), single, double")
       ->check(CLI::IsMember(namesOf(kPrecisions)));
   app.add_flag("--quiet", cli.quiet, "no progress line");
   // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
@@ -223,13 +224,17 @@ void parseChoices(const CliNames& names, Cli& cli) {
 /// does not fit in memory (docs/homogenize.md, Memory).
 void checkMemory(const Cli& cli, const lamina::micro::CellSpec& spec, const std::array<int, 3>& n,
                  const lamina::homogenize::MpiSession& mpi) {
-  // per voxel 72 bytes of CG vectors, the FFT buffer, the phase index and
-  // with the energy estimate six displacement fields, over the ranks; rank 0
-  // also holds the whole phase map while it scatters it
+  // per voxel three CG vectors (72 bytes in double, 36 in single precision),
+  // the FFT buffer, the phase index and with the energy estimate six
+  // displacement fields (a seventh in double for the dispersion sink when
+  // single), over the ranks; rank 0 also holds the whole phase map while it
+  // scatters it
   const std::uint64_t voxels = static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
                                static_cast<std::uint64_t>(n[2]);
-  const std::uint64_t per_voxel = 76 + (cli.single() ? 12 : 24) +
-                                  (cli.estimate == lamina::homogenize::Estimate::Energy ? 144 : 0);
+  const std::uint64_t field = cli.single() ? 12 : 24; // one displacement-like field
+  const std::uint64_t per_voxel =
+      4 + 4 * field + (cli.estimate == lamina::homogenize::Estimate::Energy ? 6 * field : 0) +
+      (spec.physical_size && cli.single() ? 24 : 0);
   // a cell with a size also gets its dispersion tensor, formed on rank 0
   // from the whole grid: the spectra h_hat of the six cases (6 x 3 complex
   // doubles per mode of the half spectrum, 146 bytes per voxel), the FFT
@@ -245,7 +250,7 @@ void checkMemory(const Cli& cli, const lamina::micro::CellSpec& spec, const std:
       {cli.cell_path, 0, cli.resolution > 0 ? "--resolution" : "cell.resolution"},
       "run it distributed: mpirun -np N homogenize " + cli.cell_path +
           " ... (each rank holds 1/N of the fields), or --estimate stress "
-          "--precision single (90 bytes per voxel)");
+          "--precision single (52 bytes per voxel)");
 }
 
 /// Rank 0 builds the phase map of @p spec at @p n voxels; the others learn only its grid.

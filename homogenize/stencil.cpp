@@ -8,8 +8,8 @@
 
 namespace lamina::homogenize::stencil {
 
-void gradientSums(const double* a, const double* b, const double* c, const double* d, int n2,
-                  double* X, double* Y, double* Z) {
+template <class T>
+void gradientSums(const T* a, const T* b, const T* c, const T* d, int n2, T* X, T* Y, T* Z) {
   LAMINA_STENCIL_SIMD
   for (int k = 0; k < n2; ++k) {
     X[k] = (b[k] - a[k]) + (d[k] - c[k]);
@@ -23,7 +23,7 @@ void gradientSums(const double* a, const double* b, const double* c, const doubl
 
 void strainRow(const double* sums, std::size_t L, const Grid& grid, const std::array<double, 6>& E,
                double* const eps[6]) {
-  const RowSums rs(sums, L, grid);
+  const RowSums<double> rs(sums, L, grid);
   LAMINA_STENCIL_SIMD
   for (int k = 0; k < grid.n[2]; ++k) {
     strainAt(rs, E, k, eps[0][k], eps[1][k], eps[2][k], eps[3][k], eps[4][k], eps[5][k]);
@@ -75,14 +75,14 @@ void divergenceRow(const double* const prev_j[6], const double* const prev_m[6],
   }
 }
 
-void xCombinations(const double* const prev[6], const double* const cur[6], int n2, double* out) {
+template <class T>
+void xCombinations(const T* const prev[6], const T* const cur[6], int n2, T* out) {
   const std::size_t L = static_cast<std::size_t>(n2) + 1;
-  double *D0 = out + 1, *D3 = out + L + 1, *D5 = out + 2 * L + 1;             // prev - cur
-  double *S3 = out + 3 * L + 1, *S1 = out + 4 * L + 1, *S4 = out + 5 * L + 1; // prev + cur
-  double *S5 = out + 6 * L + 1, *S2 = out + 7 * L + 1;
-  const double *p0 = prev[0], *p1 = prev[1], *p2 = prev[2], *p3 = prev[3], *p4 = prev[4],
-               *p5 = prev[5];
-  const double *c0 = cur[0], *c1 = cur[1], *c2 = cur[2], *c3 = cur[3], *c4 = cur[4], *c5 = cur[5];
+  T *D0 = out + 1, *D3 = out + L + 1, *D5 = out + 2 * L + 1;             // prev - cur
+  T *S3 = out + 3 * L + 1, *S1 = out + 4 * L + 1, *S4 = out + 5 * L + 1; // prev + cur
+  T *S5 = out + 6 * L + 1, *S2 = out + 7 * L + 1;
+  const T *p0 = prev[0], *p1 = prev[1], *p2 = prev[2], *p3 = prev[3], *p4 = prev[4], *p5 = prev[5];
+  const T *c0 = cur[0], *c1 = cur[1], *c2 = cur[2], *c3 = cur[3], *c4 = cur[4], *c5 = cur[5];
   LAMINA_STENCIL_SIMD
   for (int k = 0; k < n2; ++k) {
     D0[k] = p0[k] - c0[k];
@@ -98,20 +98,21 @@ void xCombinations(const double* const prev[6], const double* const cur[6], int 
     out[static_cast<std::size_t>(s) * L] = out[static_cast<std::size_t>(s) * L + n2];
 }
 
-void divergenceFromCombinations(const double* cj, const double* cm, const Grid& grid,
-                                double* const f[3]) {
+template <class T>
+void divergenceFromCombinations(const T* cj, const T* cm, const Grid& grid, T* const f[3]) {
   const int n2 = grid.n[2];
-  const double cx = 0.25 / grid.h[0], cy = 0.25 / grid.h[1], cz = 0.25 / grid.h[2];
+  const T cx = static_cast<T>(0.25 / grid.h[0]), cy = static_cast<T>(0.25 / grid.h[1]),
+          cz = static_cast<T>(0.25 / grid.h[2]);
   const std::size_t L = static_cast<std::size_t>(n2) + 1;
-  const double *D0j = cj, *D3j = cj + L, *D5j = cj + 2 * L, *S3j = cj + 3 * L, *S1j = cj + 4 * L,
-               *S4j = cj + 5 * L, *S5j = cj + 6 * L, *S2j = cj + 7 * L;
-  const double *D0m = cm, *D3m = cm + L, *D5m = cm + 2 * L, *S3m = cm + 3 * L, *S1m = cm + 4 * L,
-               *S4m = cm + 5 * L, *S5m = cm + 6 * L, *S2m = cm + 7 * L;
-  double *fx = f[0], *fy = f[1], *fz = f[2];
+  const T *D0j = cj, *D3j = cj + L, *D5j = cj + 2 * L, *S3j = cj + 3 * L, *S1j = cj + 4 * L,
+          *S4j = cj + 5 * L, *S5j = cj + 6 * L, *S2j = cj + 7 * L;
+  const T *D0m = cm, *D3m = cm + L, *D5m = cm + 2 * L, *S3m = cm + 3 * L, *S1m = cm + 4 * L,
+          *S4m = cm + 5 * L, *S5m = cm + 6 * L, *S2m = cm + 7 * L;
+  T *fx = f[0], *fy = f[1], *fz = f[2];
   // the sums of divergenceRow (X across y: rows j + m; Y: m - j; Z: j + m),
   // voxel k at index k+1, voxel k-1 at index k
-  auto X = [](const double* a, const double* b, int i) { return a[i] + b[i]; };
-  auto Y = [](const double* a, const double* b, int i) { return b[i] - a[i]; };
+  auto X = [](const T* a, const T* b, int i) { return a[i] + b[i]; };
+  auto Y = [](const T* a, const T* b, int i) { return b[i] - a[i]; };
   LAMINA_STENCIL_SIMD
   for (int k = 0; k < n2; ++k) {
     fx[k] = cx * (X(D0j, D0m, k + 1) + X(D0j, D0m, k)) +
@@ -122,5 +123,15 @@ void divergenceFromCombinations(const double* cj, const double* cm, const Grid& 
             cy * (Y(S4j, S4m, k + 1) + Y(S4j, S4m, k)) + cz * (X(S2j, S2m, k) - X(S2j, S2m, k + 1));
   }
 }
+
+// double: the nonlinear field operator and the linear operator in double
+// precision; float: the linear operator at loose tolerances
+#define LAMINA_STENCIL_INSTANTIATE(T)                                                              \
+  template void gradientSums<T>(const T*, const T*, const T*, const T*, int, T*, T*, T*);          \
+  template void xCombinations<T>(const T* const[6], const T* const[6], int, T*);                   \
+  template void divergenceFromCombinations<T>(const T*, const T*, const Grid&, T* const[3]);
+LAMINA_STENCIL_INSTANTIATE(double)
+LAMINA_STENCIL_INSTANTIATE(float)
+#undef LAMINA_STENCIL_INSTANTIATE
 
 } // namespace lamina::homogenize::stencil

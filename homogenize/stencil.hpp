@@ -29,28 +29,32 @@ inline std::size_t rowLength(const Grid& g) {
 
 /// Column sums of one displacement component: X = (b - a) + (d - c),
 /// Y = (c + d) - (a + b), Z = (a + b) + (c + d) for k < n2, and entry n2 a
-/// copy of entry 0 (periodic in z).
+/// copy of entry 0 (periodic in z). T: double, or float for the linear
+/// solver's single-precision operator (cell_operator.hpp).
 /// @param a, b, c, d node rows (i, j), (i+1, j), (i, j+1), (i+1, j+1)
-void gradientSums(const double* a, const double* b, const double* c, const double* d, int n2,
-                  double* X, double* Y, double* Z);
+template <class T>
+void gradientSums(const T* a, const T* b, const T* c, const T* d, int n2, T* X, T* Y, T* Z);
 
 /// The column sums of a voxel row (as gradientSums leaves them) and the
 /// grid factors 1/(4 h): strainAt() finishes one voxel's strain from them.
+template <class T>
 struct RowSums {
   /// @param sums X, Y, Z of component c at sums + (3 c + s) * L (s = 0, 1, 2)
-  RowSums(const double* sums, std::size_t L, const Grid& grid)
+  RowSums(const T* sums, std::size_t L, const Grid& grid)
       : X0(sums), Y0(sums + L), Z0(sums + 2 * L), X1(sums + 3 * L), Y1(sums + 4 * L),
         Z1(sums + 5 * L), X2(sums + 6 * L), Y2(sums + 7 * L), Z2(sums + 8 * L),
-        cx(0.25 / grid.h[0]), cy(0.25 / grid.h[1]), cz(0.25 / grid.h[2]) {}
-  const double *X0, *Y0, *Z0, *X1, *Y1, *Z1, *X2, *Y2, *Z2; ///< column sums per component
-  double cx, cy, cz;                                        ///< 1 / (4 h) per axis
+        cx(static_cast<T>(0.25 / grid.h[0])), cy(static_cast<T>(0.25 / grid.h[1])),
+        cz(static_cast<T>(0.25 / grid.h[2])) {}
+  const T *X0, *Y0, *Z0, *X1, *Y1, *Z1, *X2, *Y2, *Z2; ///< column sums per component
+  T cx, cy, cz;                                        ///< 1 / (4 h) per axis
 };
 
 /// eps = E + D u of voxel k of a row (lamina order, engineering shear):
 /// d u_c / d x from X (averaged over k, k+1), d/dy from Y, d/dz from Z
 /// (difference). Inline: the cell operator's SIMD row loop calls it.
-inline void strainAt(const RowSums& s, const std::array<double, 6>& E, int k, double& e0,
-                     double& e1, double& e2, double& e3, double& e4, double& e5) {
+template <class T>
+inline void strainAt(const RowSums<T>& s, const std::array<T, 6>& E, int k, T& e0, T& e1, T& e2,
+                     T& e3, T& e4, T& e5) {
   e0 = E[0] + s.cx * (s.X0[k] + s.X0[k + 1]);
   e1 = E[1] + s.cy * (s.Y1[k] + s.Y1[k + 1]);
   e2 = E[2] + s.cz * (s.Z2[k + 1] - s.Z2[k]);
@@ -87,12 +91,13 @@ inline constexpr int kXCombinations = 8;
 /// them once halves the reads of the stress planes.
 /// @param prev, cur the voxel row (j) of the planes below and above the node plane
 /// @param out kXCombinations rows of L entries
-void xCombinations(const double* const prev[6], const double* const cur[6], int n2, double* out);
+template <class T>
+void xCombinations(const T* const prev[6], const T* const cur[6], int n2, T* out);
 
 /// Nodal forces of a node row, f = D^T sigma, from the x-combinations of
 /// voxel rows j (@p cj) and j-1 (@p cm): the same sums as divergenceRow.
 /// @param f the three force rows (x, y, z components), n2 each
-void divergenceFromCombinations(const double* cj, const double* cm, const Grid& grid,
-                                double* const f[3]);
+template <class T>
+void divergenceFromCombinations(const T* cj, const T* cm, const Grid& grid, T* const f[3]);
 
 } // namespace lamina::homogenize::stencil

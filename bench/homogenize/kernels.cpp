@@ -5,6 +5,8 @@
 // the FFT floor (3 r2c + 3 c2r alone); prints the iteration over the floor.
 // Also a load case's start residual b = -D^T C E: by the operator with u =
 // 0 and as the solver forms it (start_residual.hpp: only next to interfaces).
+// With single precision the fields and the operator are float, as in the
+// solver at tol >= 1e-6.
 // With a cell file it times that cell as `homogenize` builds it (composite
 // voxels and all: building the cell and its voxel materials is timed too),
 // else a centred 19 % sphere of the benchmark's two phases, staircase.
@@ -30,6 +32,78 @@
 #include <ctime>
 
 using namespace lamina;
+
+// Times the operator, the preconditioner, one CG iteration and the FFT
+// floor with CG vectors of type V.
+template <class V>
+void timeIteration(const homogenize::Grid& g, const homogenize::CellOperator& A,
+                   const homogenize::StartResidual& b, const homogenize::GreenOperator& M,
+                   homogenize::VectorFft& fft) {
+  homogenize::AlignedArray<V> u(3 * g.size()), f(3 * g.size());
+  for (std::size_t i = 0; i < u.size(); ++i)
+    u.data()[i] = static_cast<V>(std::sin(0.001 * static_cast<double>(i)));
+  const std::array<double, 6> E{0, 0, 0, 0, 0, 0};
+  auto cpu = [] {
+    timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return ts.tv_sec + 1e-9 * ts.tv_nsec;
+  };
+  struct Timing {
+    double wall, cpu;
+  };
+  auto time = [&](const char* what, auto&& fn) {
+    fn();
+    const int reps = 10;
+    double best = 1e30;
+    const double c0 = cpu();
+    for (int r = 0; r < reps; ++r) {
+      const auto a = std::chrono::steady_clock::now();
+      fn();
+      best = std::min(best,
+                      std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
+    }
+    const Timing t{best, (cpu() - c0) / reps};
+    std::printf("%-28s %8.2f ms wall (best of %d) %8.2f ms cpu (mean, all threads)\n", what,
+                1e3 * t.wall, reps, 1e3 * t.cpu);
+    return t;
+  };
+  time("operator A p", [&] { A.apply(u.data(), E, f.data(), nullptr); });
+  time("stress pass only", [&] {
+    std::array<double, 6> avg{};
+    A.apply(u.data(), E, nullptr, &avg);
+  });
+  const std::array<double, 6> E1{1, 0, 0, 0, 0, 0};
+  time("b by the operator (u = 0)", [&] {
+    std::array<double, 6> avg{};
+    A.apply(static_cast<const V*>(nullptr), E1, f.data(), &avg);
+  });
+  time("b next to interfaces only", [&] {
+    std::array<double, 6> avg{};
+    b.apply(E1, f.data(), avg);
+  });
+  std::printf("node rows next to an interface: %.1f %%\n", 100 * b.activeRowFraction());
+  time("preconditioner M r", [&] { M.apply(u.data(), f.data()); });
+  homogenize::AlignedArray<V> r(3 * g.size()), x(3 * g.size()), p(3 * g.size());
+  std::copy(u.data(), u.data() + u.size(), r.data());
+  std::copy(u.data(), u.data() + u.size(), p.data());
+  std::fill(x.data(), x.data() + x.size(), V(0));
+  // alpha tiny keeps r about constant, and the old r^T z at 1e3 times the new
+  // one gives beta = 1e-3: r, x and p stay bounded (and normal, no
+  // denormals) over the repetitions
+  const double rz = 1e3 * M.apply(r.data(), f.data());
+  const Timing iteration = time("CG iteration (A p + step)", [&] {
+    double pw = 0;
+    std::array<double, 6> sigma_p{};
+    A.apply(p.data(), E, f.data(), &sigma_p, &pw);
+    M.step(r.data(), 1e-12, f.data(), x.data(), p.data(), rz);
+  });
+  const Timing floor = time("3 x (r2c + c2r) + copies", [&] {
+    fft.forward(u.data());
+    fft.backward(f.data());
+  });
+  std::printf("CG iteration / FFT floor: %.2f wall, %.2f cpu\n", iteration.wall / floor.wall,
+              iteration.cpu / floor.cpu);
+}
 
 int main(int argc, char** argv) {
   const int N = argc > 1 ? std::atoi(argv[1]) : 128;
@@ -77,72 +151,13 @@ int main(int argc, char** argv) {
   std::printf("operator setup %.3f s\n",
               std::chrono::duration<double>(std::chrono::steady_clock::now() - a0).count());
   homogenize::GreenOperator M(g, lambda0, mu0, fft, dist);
-  homogenize::AlignedBuffer u(3 * g.size()), f(3 * g.size());
-  for (std::size_t i = 0; i < u.size(); ++i)
-    u.data()[i] = std::sin(0.001 * static_cast<double>(i));
-  const std::array<double, 6> E{0, 0, 0, 0, 0, 0};
-  auto cpu = [] {
-    timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-  };
-  struct Timing {
-    double wall, cpu;
-  };
-  auto time = [&](const char* what, auto&& fn) {
-    fn();
-    const int reps = 10;
-    double best = 1e30;
-    const double c0 = cpu();
-    for (int r = 0; r < reps; ++r) {
-      const auto a = std::chrono::steady_clock::now();
-      fn();
-      best = std::min(best,
-                      std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count());
-    }
-    const Timing t{best, (cpu() - c0) / reps};
-    std::printf("%-28s %8.2f ms wall (best of %d) %8.2f ms cpu (mean, all threads)\n", what,
-                1e3 * t.wall, reps, 1e3 * t.cpu);
-    return t;
-  };
   std::printf("N = %d, threads = %d, planning %s, %s precision: %.2f s\n", N, threads,
               measure ? "FFTW_MEASURE" : "FFTW_ESTIMATE", single ? "single" : "double", plan_s);
-  time("operator A p", [&] { A.apply(u.data(), E, f.data(), nullptr); });
-  time("stress pass only", [&] {
-    std::array<double, 6> avg{};
-    A.apply(u.data(), E, nullptr, &avg);
-  });
-  const std::array<double, 6> E1{1, 0, 0, 0, 0, 0};
-  time("b by the operator (u = 0)", [&] {
-    std::array<double, 6> avg{};
-    A.apply(nullptr, E1, f.data(), &avg);
-  });
   const homogenize::StartResidual b(g, map, C, dist);
-  time("b next to interfaces only", [&] {
-    std::array<double, 6> avg{};
-    b.apply(E1, f.data(), avg);
-  });
-  std::printf("node rows next to an interface: %.1f %%\n", 100 * b.activeRowFraction());
-  time("preconditioner M r", [&] { M.apply(u.data(), f.data()); });
-  homogenize::AlignedBuffer r(3 * g.size()), x(3 * g.size()), p(3 * g.size());
-  std::copy(u.data(), u.data() + u.size(), r.data());
-  std::copy(u.data(), u.data() + u.size(), p.data());
-  std::fill(x.data(), x.data() + x.size(), 0.0);
-  // alpha tiny keeps r about constant, and the old r^T z at 1e3 times the new
-  // one gives beta = 1e-3: r, x and p stay bounded (and normal, no
-  // denormals) over the repetitions
-  const double rz = 1e3 * M.apply(r.data(), f.data());
-  const Timing iteration = time("CG iteration (A p + step)", [&] {
-    double pw = 0;
-    std::array<double, 6> sigma_p{};
-    A.apply(p.data(), E, f.data(), &sigma_p, &pw);
-    M.step(r.data(), 1e-12, f.data(), x.data(), p.data(), rz);
-  });
-  const Timing floor = time("3 x (r2c + c2r) + copies", [&] {
-    fft.forward(u.data());
-    fft.backward(f.data());
-  });
-  std::printf("CG iteration / FFT floor: %.2f wall, %.2f cpu\n", iteration.wall / floor.wall,
-              iteration.cpu / floor.cpu);
+  // the fields as the solver holds them: float with single-precision transforms
+  if (single)
+    timeIteration<float>(g, A, b, M, fft);
+  else
+    timeIteration<double>(g, A, b, M, fft);
   return 0;
 }

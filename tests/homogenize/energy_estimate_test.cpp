@@ -63,7 +63,11 @@ class EnergyEstimate : public ::testing::TestWithParam<homogenize::Precision> {}
 // energy integral itself comes out of the operator's stress pass. By
 // polarization, 2 N C_jk = W(E_j + E_k, x_j + x_k) - W(E_j, x_j) - W(E_k, x_k)
 // with W(E, u) = sum over voxels of eps : C : eps. Both sides are sums of
-// N terms of size max|C|: 1e-10 relative is round-off with margin.
+// N terms of size max|C|: 1e-10 relative is double round-off with margin.
+// In single precision the solver's operator, residual and displacements are
+// float (unit round-off 6e-8; the residual is updated recursively over the
+// iterations): 1e-6 relative, still 4 decades below the error a broken
+// identity would leave (linear in the residual, 1e-2 here).
 TEST_P(EnergyEstimate, EqualsTheEnergyIntegralOfTheSixSolutions) {
   const Cell cell;
   // loose tolerance: the identity holds at any iterate
@@ -93,7 +97,8 @@ TEST_P(EnergyEstimate, EqualsTheEnergyIntegralOfTheSixSolutions) {
       for (std::size_t i = 0; i < xj.size(); ++i)
         xjk[i] = xj[i] + xk[i];
       const double Cjk = j == k ? W(Ej, xj) / N : (W(Ejk, xjk) - W(Ej, xj) - W(Ek, xk)) / (2 * N);
-      EXPECT_NEAR(r.C(j, k), Cjk, 1e-10 * scale) << "C(" << j << "," << k << ")";
+      const double rel = GetParam() == homogenize::Precision::Double ? 1e-10 : 1e-6;
+      EXPECT_NEAR(r.C(j, k), Cjk, rel * scale) << "C(" << j << "," << k << ")";
     }
 }
 

@@ -67,10 +67,22 @@ protected:
 // FFTs), and C comes from one final stress pass per case, not from sums
 // accumulated over the iterations (measured: 2e-15 of max|C| on the
 // particles scan, the same as 1 against 2 threads). Odd resolutions split
-// unevenly over the ranks (6 and 5 planes at 11^3).
+// unevenly over the ranks (6 and 5 planes at 11^3). At tol 1e-3 the
+// operator, the CG vectors and the transforms are float: the runs then
+// differ by float rounding (unit round-off 6e-8) carried through the
+// iterations, 1e-6 of max|C| with margin (measured 7.8e-9 on the 128^3
+// sphere cell).
 TEST_F(MpiRun, TwoRanksGiveTheSerialResult) {
-  for (const char* res : {"11", "16"}) {
-    const std::string extra = std::string("--resolution ") + res + " --tol 1e-8 --precision double";
+  struct Case {
+    const char* res;
+    const char* options;
+    double rel; // of max|C|
+  };
+  for (const Case& c :
+       {Case{"11", "--tol 1e-8 --precision double", 1e-12},
+        Case{"16", "--tol 1e-8 --precision double", 1e-12}, Case{"12", "--tol 1e-3", 1e-6}}) {
+    const std::string res = c.res;
+    const std::string extra = "--resolution " + res + " " + c.options;
     const auto serial =
         run(homogenize("polyurea.toml", std::string("serial") + res + ".toml", extra));
     ASSERT_EQ(serial.first, 0) << serial.second;
@@ -88,7 +100,8 @@ TEST_F(MpiRun, TwoRanksGiveTheSerialResult) {
         scale = std::max(scale, std::abs(x));
         diff = std::max(diff, std::abs(x - y));
       }
-    EXPECT_LE(diff, 1e-12 * scale) << res << "^3: max |C_mpi - C_serial| = " << diff;
+    EXPECT_LE(diff, c.rel * scale)
+        << res << "^3, " << c.options << ": max |C_mpi - C_serial| = " << diff;
     EXPECT_NEAR(b["density"].get<double>(), a["density"].get<double>(),
                 1e-14 * a["density"].get<double>());
     EXPECT_EQ(b["iterations"], a["iterations"]);
