@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 namespace lamina::micro {
 
@@ -381,18 +382,25 @@ VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials:
       return Cp;
     return Cp.rotated(materials::axisRotation(o->axis, o->angle));
   };
-  // oriented voxels that are not composite: one entry each, after the
-  // composite voxels' entries
-  std::vector<std::size_t> whole;
+  // whole oriented voxels share an entry per rotation: the foot, hence the
+  // angle, depends only on the voxel's coordinates along the yarn and its
+  // crimp axis, so a row of voxels across the yarn's width has one angle,
+  // bit for bit (exact sharing, no quantisation)
+  using Key = std::tuple<int, int, double>; // phase, axis, angle
+  std::vector<std::pair<Key, std::size_t>> whole;
   for (const OrientedVoxel& o : cell.oriented)
     if (!findVoxel(cell.composites, o.index))
-      whole.push_back(o.index);
-  // entry base + i for composite voxel i, then base + composites + i for
-  // whole oriented voxel i (each voxel's own slot: threads write disjoint
-  // entries)
+      whole.push_back({Key{o.phase, o.axis, o.angle}, o.index});
+  std::sort(whole.begin(), whole.end());
+  std::vector<Key> rotations;
+  for (const auto& w : whole)
+    if (rotations.empty() || rotations.back() != w.first)
+      rotations.push_back(w.first);
+  // entry base + i for composite voxel i, then base + composites + r for
+  // rotation r (each entry its own slot: threads write disjoint entries)
   const std::size_t base = m.C.size(), nc = cell.composites.size();
-  m.C.resize(base + nc + whole.size());
-  m.density.resize(base + nc + whole.size());
+  m.C.resize(base + nc + rotations.size());
+  m.density.resize(base + nc + rotations.size());
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nc); ++i) {
     const CompositeVoxel& v = cell.composites[static_cast<std::size_t>(i)];
@@ -403,13 +411,16 @@ VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials:
     m.density[e] = v.fraction * density[in] + (1 - v.fraction) * density[out];
   }
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(whole.size()); ++i) {
-    const std::size_t idx = whole[static_cast<std::size_t>(i)];
-    const std::int32_t ph = cell.phase[idx];
-    const std::size_t e = base + nc + static_cast<std::size_t>(i);
-    m.phase[idx] = static_cast<std::int32_t>(e);
-    m.C[e] = stiffnessIn(idx, ph);
+  for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(rotations.size()); ++r) {
+    const auto& [ph, axis, angle] = rotations[static_cast<std::size_t>(r)];
+    const std::size_t e = base + nc + static_cast<std::size_t>(r);
+    m.C[e] = C[static_cast<std::size_t>(ph)].rotated(materials::axisRotation(axis, angle));
     m.density[e] = density[static_cast<std::size_t>(ph)];
+  }
+  for (std::size_t w = 0, r = 0; w < whole.size(); ++w) {
+    if (whole[w].first != rotations[r])
+      ++r;
+    m.phase[whole[w].second] = static_cast<std::int32_t>(base + nc + r);
   }
   return m;
 }

@@ -59,9 +59,10 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
 /// stiffness and density per entry. Without composite voxels they are the
 /// cell's; with them each cut voxel gets its own entry (appended after the
 /// cell's phases) holding its laminate stiffness and mixed density. A voxel
-/// of a yarn that follows its path (UnitCell::oriented) gets its own entry
-/// too: the yarn phase's stiffness rotated to the path's tangent (the yarn
-/// side of a cut voxel's laminate, or the whole voxel's stiffness).
+/// of a yarn that follows its path (UnitCell::oriented) takes the yarn
+/// phase's stiffness rotated to the path's tangent: the yarn side of a cut
+/// voxel's laminate, or, for a whole voxel, an entry shared by the voxels of
+/// equal rotation (bit for bit: a row across the yarn's width).
 struct VoxelMaterials {
   std::vector<std::int32_t> phase;     ///< entry per voxel
   std::vector<materials::Stiffness> C; ///< per entry (lamina order, Pa)
@@ -70,8 +71,9 @@ struct VoxelMaterials {
 
 /// Builds the VoxelMaterials of @p cell from the phase stiffnesses @p C and
 /// densities @p density (laminate stiffness per composite voxel, rotated
-/// stiffness per oriented voxel; entries: the phases, then the composite
-/// voxels in voxel order, then the whole oriented voxels in voxel order).
+/// stiffness per rotation of whole oriented voxels; entries: the phases,
+/// then the composite voxels in voxel order, then the distinct rotations
+/// (phase, axis, angle) in ascending order).
 VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials::Stiffness>& C,
                               const std::vector<double>& density);
 

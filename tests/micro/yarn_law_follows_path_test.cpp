@@ -203,6 +203,13 @@ TEST(YarnLawFollowsPath, VoxelStiffnessIsTheAnalyticallyRotatedC) {
     EXPECT_GT(cut, 1000u);
     EXPECT_GT(maxTheta, 31.0 * M_PI / 180);
     EXPECT_EQ(cell.oriented.size(), whole + cut);
+    // whole voxels share their rotation's entry: the foot depends only on the
+    // coordinates along the yarn and the crimp axis, so there are at most
+    // n_a n_c rotations (the grid's rows across the width)
+    const std::size_t rotations = vm.C.size() - 2 - cell.composites.size();
+    EXPECT_LE(rotations, static_cast<std::size_t>(cell.n[static_cast<std::size_t>(inc.axis)] *
+                                                  cell.n[static_cast<std::size_t>(inc.crimp)]));
+    EXPECT_LT(3 * rotations, whole);
   }
 }
 
