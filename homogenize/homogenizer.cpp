@@ -58,14 +58,18 @@ Precision autoPrecision(double tol) {
   return tol >= 1e-6 ? Precision::Single : Precision::Double;
 }
 
+bool floatVectors(Precision fft, double tol) {
+  return fft == Precision::Single && tol >= kFloatVectorsTol;
+}
+
 namespace {
 
 /// The pieces of one solve, set up once and reused by the six load cases.
 /// V: the type of the CG vectors and of the operator's arithmetic, float
-/// when the transforms are single precision (tol >= 1e-6: the float
-/// rounding, ~6e-8 relative, sits far below the residual CG has to reach),
-/// else double. The scalars (alpha, beta) and the sums over the grid
-/// (p^T A p, r^T z, <C D p>, x^T r) stay double.
+/// when floatVectors() (single-precision transforms and tol >=
+/// kFloatVectorsTol: the float rounding left in C is then at most of the
+/// order of what the tolerance leaves), else double. The scalars (alpha, beta) and the sums over
+/// the grid (p^T A p, r^T z, <C D p>, x^T r) stay double.
 template <class V>
 class CgSolver {
 public:
@@ -321,7 +325,8 @@ Result Homogenizer::run() {
   const StartResidual b(grid_, phase_, C_, dist_);
   const GreenOperator M(grid_, res.lambda0, res.mu0, fft, dist_);
   materials::Matrix6 C = materials::Matrix6::Zero(), C_energy = materials::Matrix6::Zero();
-  if (res.precision == Precision::Single)
+  res.float_vectors = floatVectors(res.precision, opt_.tol);
+  if (res.float_vectors)
     solveCases<float>(A, b, M, C0, res, C, C_energy);
   else
     solveCases<double>(A, b, M, C0, res, C, C_energy);

@@ -56,9 +56,10 @@ struct Options {
   int measure = -1;           ///< FFTW_MEASURE planning: 1 yes, 0 no, -1 auto (above 64^3 voxels)
   bool quiet = true;          ///< no progress line
   Estimate estimate = Estimate::Energy; ///< how C is formed
-  /// Precision of the preconditioner's FFTs, the cell operator and the CG
-  /// vectors (sums over the grid and the CG scalars stay double); unset:
-  /// single when tol >= 1e-6 (autoPrecision), else double
+  /// Precision of the preconditioner's FFTs (and, from tol
+  /// kFloatVectorsTol up, of the cell operator and the CG vectors: see
+  /// floatVectors(); sums over the grid and the CG scalars stay double);
+  /// unset: single when tol >= 1e-6 (autoPrecision), else double
   std::optional<Precision> precision;
 };
 
@@ -66,6 +67,21 @@ struct Options {
 /// precision down to tol 1e-6 (its rounding, ~1e-7 relative, stays two
 /// decades below the residual CG has to reach).
 Precision autoPrecision(double tol);
+
+/// The tolerance from which single-precision runs also keep the cell
+/// operator and the CG vectors (r, p, A p, the displacements) in float.
+/// Float vectors leave about 1e-8 of max|C| of rounding in C (7.8e-9
+/// measured between ranks on the 128^3 sphere); the energy estimate's error
+/// from the tolerance is quadratic in it (1.3e-6 of max|C| at 1e-3 on that
+/// cell, so about 1e-8 at 1e-4). From 1e-4 up the rounding is thus at most
+/// of the order of what the tolerance leaves; below, the vectors stay
+/// double and C keeps the digits its tolerance buys (6e-11 of max|C| at
+/// the default 1e-5), with only the preconditioner's transforms in float.
+inline constexpr double kFloatVectorsTol = 1e-4;
+
+/// @return true when the cell operator and the CG vectors run in float:
+/// transforms in single precision (@p fft) and @p tol >= kFloatVectorsTol
+bool floatVectors(Precision fft, double tol);
 
 /// Outcome of one load case.
 struct LoadCaseResult {
@@ -90,6 +106,7 @@ struct Result {
   double wall_s = 0;                       ///< wall time of run() (s)
   Estimate estimate = Estimate::Energy;    ///< how C was formed
   Precision precision = Precision::Double; ///< FFT precision used
+  bool float_vectors = false; ///< cell operator and CG vectors in float (floatVectors())
   /// @return the largest final residual of the six cases
   double maxResidual() const;
   /// @return the iterations of the six cases

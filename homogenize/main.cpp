@@ -110,8 +110,9 @@ enum class FftwPlan { Auto, Estimate, Measure };
 constexpr Choices<FftwPlan, 3> kPlans{
     {{"auto", FftwPlan::Auto}, {"estimate", FftwPlan::Estimate}, {"measure", FftwPlan::Measure}}};
 
-/// --precision: precision of the preconditioner's FFTs, the operator and the
-/// CG vectors (Auto: from --tol).
+/// --precision: precision of the preconditioner's FFTs (Auto: from --tol);
+/// single also makes the operator and the CG vectors float from --tol 1e-4
+/// up (homogenize::floatVectors).
 enum class PrecisionChoice { Auto, Single, Double };
 constexpr Choices<PrecisionChoice, 3> kPrecisions{{{"auto", PrecisionChoice::Auto},
                                                    {"single", PrecisionChoice::Single},
@@ -143,11 +144,16 @@ struct Cli {
 
   /// @return true for a nonlinear run (a strain path or rate-dependent tangents)
   bool nonlinear() const { return path_given || !tangent.rates.empty(); }
-  /// @return true when the FFTs, the operator and the CG vectors run in single precision
+  /// @return true when the cell operator and the CG vectors run in float
+  /// (single-precision transforms and tol >= kFloatVectorsTol)
   bool single() const {
-    return precision == PrecisionChoice::Single ||
-           (precision == PrecisionChoice::Auto &&
-            lamina::homogenize::autoPrecision(tol) == lamina::homogenize::Precision::Single);
+    const bool fft_single =
+        precision == PrecisionChoice::Single ||
+        (precision == PrecisionChoice::Auto &&
+         lamina::homogenize::autoPrecision(tol) == lamina::homogenize::Precision::Single);
+    return lamina::homogenize::floatVectors(fft_single ? lamina::homogenize::Precision::Single
+                                                       : lamina::homogenize::Precision::Double,
+                                            tol);
   }
 };
 
@@ -180,8 +186,8 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
                  "residual, keeps 6 displacement fields) or stress (<sigma_k>, least memory)")
       ->check(CLI::IsMember(namesOf(kEstimates)));
   app.add_option("--precision", names.precision,
-                 "precision of the FFTs, the operator and the CG vectors: auto (single when tol "
-                 ">= 1e-6), single, double")
+                 "precision of the FFTs: auto (single when tol >= 1e-6), single, double; in "
+                 "single from tol 1e-4 up the operator and the CG vectors are float too")
       ->check(CLI::IsMember(namesOf(kPrecisions)));
   app.add_flag("--quiet", cli.quiet, "no progress line");
   // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
@@ -250,7 +256,7 @@ void checkMemory(const Cli& cli, const lamina::micro::CellSpec& spec, const std:
       {cli.cell_path, 0, cli.resolution > 0 ? "--resolution" : "cell.resolution"},
       "run it distributed: mpirun -np N homogenize " + cli.cell_path +
           " ... (each rank holds 1/N of the fields), or --estimate stress "
-          "--precision single (52 bytes per voxel)");
+          "--precision single with --tol 1e-4 or looser (52 bytes per voxel)");
 }
 
 /// Rank 0 builds the phase map of @p spec at @p n voxels; the others learn only its grid.

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -144,7 +145,8 @@ inline Stiffness randomStiffness(std::mt19937& rng) {
 inline homogenize::Result homogenizeMap(const std::array<int, 3>& n,
                                         const std::vector<std::int32_t>& phase,
                                         const std::vector<Stiffness>& C, double tol,
-                                        std::vector<double> density = {}) {
+                                        std::vector<double> density = {},
+                                        std::optional<homogenize::Precision> precision = {}) {
   if (density.empty())
     density.assign(C.size(), 1000.0);
   homogenize::Grid g;
@@ -152,6 +154,7 @@ inline homogenize::Result homogenizeMap(const std::array<int, 3>& n,
   g.h = {1.0 / n[0], 1.0 / n[1], 1.0 / n[2]};
   homogenize::Options o;
   o.tol = tol;
+  o.precision = precision;
   homogenize::Homogenizer h(g, phase, C, density, o);
   return h.run();
 }

@@ -54,7 +54,7 @@ std::string matrixToml(const Matrix6& C) {
 const char* kAxis[3] = {"x", "y", "z"};
 
 // One yarn along @p a undulating along @p c in a cell of 2 x 1 x 0.5 mm
-// (direction, width axis, crimp), 40 um voxels; lambda = 1 mm, A = 0.1 mm:
+// (direction, width axis, crimp), 25 um voxels; lambda = 1 mm, A = 0.1 mm:
 // the crimp angle reaches atan(A k) = 32 degrees.
 std::string yarnCell(int a, int c, const std::string& yarnLaw, const std::string& extra) {
   const int w = 3 - a - c;
