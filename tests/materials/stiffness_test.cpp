@@ -33,33 +33,6 @@ const mat::Catalog& catalog() {
   return cat;
 }
 
-// Rotates the fourth-order tensor by definition,
-// C'_ijkl = R_ip R_jq R_kr R_ls C_pqrs, going through the full 3x3x3x3 array.
-// With engineering shear strain, C_ijkl equals the lamina entry of the pairs.
-mat::Matrix6 rotateByDefinition(const mat::Matrix6& c, const Eigen::Matrix3d& r) {
-  const int idx[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
-  double t[3][3][3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l)
-          t[i][j][k][l] = c(idx[i][j], idx[k][l]);
-  mat::Matrix6 out = mat::Matrix6::Zero();
-  const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
-  for (int a = 0; a < 6; ++a)
-    for (int b = 0; b < 6; ++b) {
-      const int i = pairs[a][0], j = pairs[a][1], k = pairs[b][0], l = pairs[b][1];
-      double s = 0;
-      for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q)
-          for (int u = 0; u < 3; ++u)
-            for (int v = 0; v < 3; ++v)
-              s += r(i, p) * r(j, q) * r(k, u) * r(l, v) * t[p][q][u][v];
-      out(a, b) = s;
-    }
-  return out;
-}
-
 } // namespace
 
 // ---------------------------------------------------------------- isotropic
@@ -144,7 +117,9 @@ TEST(Rotation, MatchesFourthOrderTensorDefinition) {
   const mat::Matrix6 c = randomSpd(rng);
   for (int trial = 0; trial < 3; ++trial) {
     const Eigen::Matrix3d r = randomRotation(rng);
-    EXPECT_LE(relDiff(mat::Stiffness(c).rotated(r).matrix(), rotateByDefinition(c, r)), 1e-13);
+    EXPECT_LE(
+        relDiff(mat::Stiffness(c).rotated(r).matrix(), lamina::test::rotateByDefinition(c, r)),
+        1e-13);
   }
 }
 

@@ -68,6 +68,35 @@ inline double relDiff(const materials::Matrix6& a, const materials::Matrix6& b) 
   return scale > 0 ? d / scale : d;
 }
 
+/// Rotates the fourth-order tensor by definition,
+/// C'_ijkl = R_ip R_jq R_kr R_ls C_pqrs, going through the full 3x3x3x3 array
+/// (the oracle for Stiffness::rotated). With engineering shear strain,
+/// C_ijkl equals the lamina entry of the pairs (xx yy zz xy yz xz).
+inline materials::Matrix6 rotateByDefinition(const materials::Matrix6& c,
+                                             const Eigen::Matrix3d& r) {
+  const int idx[3][3] = {{0, 3, 5}, {3, 1, 4}, {5, 4, 2}};
+  double t[3][3][3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          t[i][j][k][l] = c(idx[i][j], idx[k][l]);
+  materials::Matrix6 out = materials::Matrix6::Zero();
+  const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b) {
+      const int i = pairs[a][0], j = pairs[a][1], k = pairs[b][0], l = pairs[b][1];
+      double s = 0;
+      for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q)
+          for (int u = 0; u < 3; ++u)
+            for (int v = 0; v < 3; ++v)
+              s += r(i, p) * r(j, q) * r(k, u) * r(l, v) * t[p][q][u][v];
+      out(a, b) = s;
+    }
+  return out;
+}
+
 /// Result of running a program.
 struct RunResult {
   int status = -1; ///< exit code (-1 if it did not exit normally)

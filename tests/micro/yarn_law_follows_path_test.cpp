@@ -1,11 +1,12 @@
 // A woven yarn's law follows its centre line (micro/yarn_orientation.hpp):
-// each voxel's stiffness against the phase's C rotated, by a tensor
-// rotation written out here, to the tangent of the centre line at the
-// voxel centre's foot point, the foot found here by a brute-force search
+// each voxel's stiffness against the phase's C rotated by definition
+// (test::rotateByDefinition, the full 3x3x3x3 tensor) to the tangent of the
+// centre line at the voxel centre's foot point, the foot found here by a brute-force search
 // of the whole period (not the Newton search of the code); a straight yarn
 // and an isotropic yarn leave the voxel materials exactly as without the
 // option.
 
+#include "../materials/test_support.hpp"
 #include "micro/cell.hpp"
 #include "micro/composite_voxel.hpp"
 #include "micro/inclusion.hpp"
@@ -111,28 +112,6 @@ double bruteForceFoot(double A, double k, double s, double z) {
   return 0.5 * (lo + hi);
 }
 
-// C'_ijkl = R_ip R_jq R_kr R_ls C_pqrs on the full tensor (Voigt stiffness
-// entries C_IJ = C_ijkl with engineering shear, lamina pairs xx yy zz xy yz xz).
-Matrix6 rotateTensor(const Matrix6& C, const Eigen::Matrix3d& R) {
-  const int pair[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
-  int voigt[3][3];
-  for (int I = 0; I < 6; ++I)
-    voigt[pair[I][0]][pair[I][1]] = voigt[pair[I][1]][pair[I][0]] = I;
-  Matrix6 out = Matrix6::Zero();
-  for (int I = 0; I < 6; ++I)
-    for (int J = 0; J < 6; ++J) {
-      const int i = pair[I][0], j = pair[I][1], k = pair[J][0], l = pair[J][1];
-      double sum = 0;
-      for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q)
-          for (int r = 0; r < 3; ++r)
-            for (int t = 0; t < 3; ++t)
-              sum += R(i, p) * R(j, q) * R(k, r) * R(l, t) * C(voigt[p][q], voigt[r][t]);
-      out(I, J) = sum;
-    }
-  return out;
-}
-
 // The yarn's C rotated to the tangent at the foot of voxel centre @p p:
 // R e_a = t = cos th e_a + sin th e_c, R e_c = the path normal, R e_w = e_w.
 Matrix6 expectedAt(const Inclusion& inc, const Eigen::Vector3d& p, const Eigen::Vector3d& L,
@@ -148,7 +127,7 @@ Matrix6 expectedAt(const Inclusion& inc, const Eigen::Vector3d& p, const Eigen::
   R(a, c) = -std::sin(theta);
   R(c, c) = std::cos(theta);
   R(w, w) = 1;
-  return rotateTensor(yarnC(), R);
+  return test::rotateByDefinition(yarnC(), R);
 }
 
 // Every whole yarn voxel's entry is the analytically rotated C, and the
