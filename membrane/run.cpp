@@ -15,6 +15,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <limits>
 #include <optional>
 
 namespace lamina::membrane {
@@ -33,20 +34,25 @@ public:
     if (opt_.restart && !std::filesystem::is_directory(opt_.out_dir))
       throw Error("no output folder to restart from", {opt_.out_dir.string(), 0, ""});
     std::filesystem::create_directories(opt_.out_dir);
+    // Debris of a run killed while replacing one of its files (the stage
+    // files: the .part tables are rewritten or cut back by the CsvWriter).
+    removeTemporaries(opt_.out_dir, {model_.name + ".xdmf", "summary.json",
+                                     checkpointPath(opt_.out_dir).filename().string()});
     Simulation sim(model_); // assemble K, M; build A; set up its solver
-    std::optional<Checkpoint> resumed;
-    if (opt_.restart)
-      resumed = resume(sim);
-    openOutputs(sim, resumed ? &resumed->data : nullptr);
     const double dt = sim.integrator().timeStep();
     if (!(model_.time.t_end / dt <= kMaxSteps)) // the explicit stable step may be tiny
       throw Error("t_end / dt = " + core::formatShort(model_.time.t_end / dt) + " steps; at most " +
                       core::formatShort(kMaxSteps),
                   {"", 0, "time.dt"});
     // Newmark: t_end is a multiple of dt by the case; explicit: cover t_end.
-    const long steps = model_.time.integrator == IntegratorKind::Newmark
-                           ? std::lround(model_.time.t_end / dt)
-                           : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
+    steps_ = model_.time.integrator == IntegratorKind::Newmark
+                 ? std::lround(model_.time.t_end / dt)
+                 : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
+    const long steps = steps_;
+    std::optional<Checkpoint> resumed;
+    if (opt_.restart)
+      resumed = resume(sim);
+    openOutputs(sim, resumed.has_value());
     core::ProgressLine progress("steps", std::max(1L, steps), opt_.quiet);
     std::optional<DivergenceError> failure;
     if (!resumed)
@@ -63,9 +69,7 @@ public:
       try {
         sim.step();
         interrupted = core::interruptSignal();
-        const bool last = s == steps;
-        const int fe = model_.output.field_every;
-        record(sim, last || (fe > 0 && s % fe == 0), last || s % model_.output.energy_every == 0);
+        record(sim, fieldStep(s), energyStep(s));
       } catch (const DivergenceError& e) {
         failure = e;
         break;
@@ -121,28 +125,36 @@ private:
     fields_->write(sim.time(), sim.u(), sim.v(), fieldCells(sim));
   }
 
-  /// Opens the outputs: new ones, or (@p resumed: a checkpoint's history)
-  /// those of the interrupted run, cut back to the checkpoint's step.
-  void openOutputs(const Simulation& sim, const History* resumed) {
-    Eigen::VectorXd bytes = Eigen::VectorXd::Zero(3);
-    if (resumed)
-      bytes = historyEntry(*resumed, "run/csv_bytes", 3);
-    auto table = [&](const char* file, const std::string& header, int k) {
+  /// Opens the outputs: new ones, or (@p resumed: after resume()) those
+  /// of the interrupted run, cut back to the checkpoint's step.
+  void openOutputs(const Simulation& sim, bool resumed) {
+    // Rows of each table at the checkpoint's step k: probes and reactions
+    // one per step and the initial state, energies as energyStep() says.
+    const long k = sim.steps();
+    const std::uintmax_t rows[3] = {std::uintmax_t(k) + 1,
+                                    std::uintmax_t(recordsUpTo(k, model_.output.energy_every)),
+                                    std::uintmax_t(k) + 1};
+    auto table = [&](const char* file, const std::string& header, int t) {
       if (!resumed)
         return std::make_unique<CsvWriter>(opt_.out_dir / file, header);
-      return std::make_unique<CsvWriter>(opt_.out_dir / file, header,
-                                         static_cast<std::uintmax_t>(bytes[k]));
+      try {
+        return std::make_unique<CsvWriter>(opt_.out_dir / file, header, resumed_bytes_[t],
+                                           rows[t]);
+      } catch (const Error& e) {
+        throw resumedOutputError(e, "run/csv_bytes", k);
+      }
     };
     if (model_.output.fields) {
       const bool deformed = sim.structure().deformedGeometry();
-      if (!resumed) {
+      if (!resumed)
         fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh, deformed);
-      } else {
-        const Eigen::VectorXd times = historyEntry(*resumed, "run/field_times");
-        fields_ = std::make_unique<FieldWriter>(
-            opt_.out_dir, model_.name, model_.mesh, deformed,
-            std::vector<double>(times.data(), times.data() + times.size()), fieldCells(sim));
-      }
+      else
+        try {
+          fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh,
+                                                  deformed, resumed_field_times_, fieldCells(sim));
+        } catch (const Error& e) {
+          throw resumedOutputError(e, "run/field_times", k);
+        }
     }
     std::string h = "t";
     for (const auto& p : model_.probes)
@@ -167,6 +179,46 @@ private:
       peak_reaction_.assign(names.size(), 0.0);
       probe_peak_.assign(model_.probes.size(), 0.0);
     }
+  }
+
+  /// @return error @p e of continuing an output (naming it) that also names
+  /// the checkpoint's entry @p key and step @p k it was continued from
+  Error resumedOutputError(const Error& e, const std::string& key, long k) const {
+    return Error(std::string(e.what()) + " (entry '" + key + "' of " +
+                 checkpointPath(opt_.out_dir).string() + ", step " + std::to_string(k) + ")");
+  }
+
+  /// @return whether step @p s (of steps_) records the energies (the last always)
+  bool energyStep(long s) const { return s == steps_ || s % model_.output.energy_every == 0; }
+  /// @return whether step @p s (of steps_) writes the fields (the last always)
+  bool fieldStep(long s) const {
+    const int fe = model_.output.field_every;
+    return s == steps_ || (fe > 0 && s % fe == 0);
+  }
+  /// @return the records up to step @p k (the initial one included) of an
+  /// output written every @p every steps (0: the initial and the last only)
+  /// and at the last step
+  long recordsUpTo(long k, int every) const {
+    const long regular = every > 0 ? k / every : 0;
+    return 1 + regular + (k == steps_ && !(every > 0 && k % every == 0) ? 1 : 0);
+  }
+
+  /// The field times of checkpoint @p h, which must be those of the steps
+  /// fieldStep() chose up to the checkpoint's step, exactly (t = s * dt);
+  /// none without fields.
+  std::vector<double> resumedFieldTimes(const History& h, const Simulation& sim) const {
+    const int fe = model_.output.field_every;
+    const long count = model_.output.fields ? recordsUpTo(sim.steps(), fe) : 0;
+    const Eigen::VectorXd& times = historyEntry(h, "run/field_times", count);
+    const double dt = sim.integrator().timeStep();
+    for (Eigen::Index j = 0; j < times.size(); ++j) {
+      const long s = j + 1 == count && fieldStep(sim.steps()) ? sim.steps() : j * fe;
+      if (times[j] != static_cast<double>(s) * dt)
+        throw Error("checkpoint entry 'run/field_times' value " + std::to_string(j) + " is " +
+                    core::formatExact(times[j]) + " s, field step " + std::to_string(s) +
+                    " is at " + core::formatExact(static_cast<double>(s) * dt) + " s");
+    }
+    return {times.data(), times.data() + times.size()};
   }
 
   /// The run's bookkeeping as a History: running maxima, the last energy
@@ -211,16 +263,22 @@ private:
   Checkpoint resume(Simulation& sim) {
     const auto path = checkpointPath(opt_.out_dir);
     Checkpoint c = readCheckpoint(path);
-    removeCheckpointDebris(path);
     const ErrorContext where{path.string(), 0, ""};
+    // A checkpoint is input: every count, size and value below is checked
+    // against this run (the checksum only tells that the file is whole).
     if (c.case_digest != digest())
       throw Error("checkpoint belongs to another case ('" + c.case_name + "', digest " +
                       c.case_digest + "; this case '" + model_.name + "' has digest " + digest() +
                       "): restart with the case file and --set options of the interrupted run",
                   where);
     try {
-      sim.restore(c.data);
+      sim.restore(c.data, steps_);
       const auto& h = c.data;
+      for (const char* key : {"run/maxima", "run/peak_reaction", "run/probe_peak"})
+        if (const auto it = h.find(key); it != h.end() && (it->second.array() < 0).any())
+          throw Error(std::string("checkpoint entry '") + key + "' holds a negative maximum");
+      if (h.count("run/omp_threads")) // absent from checkpoints written before it was recorded
+        historyInteger(h, "run/omp_threads", 1, 0, 1, std::numeric_limits<int>::max());
       const Eigen::VectorXd& m = historyEntry(h, "run/maxima", 6);
       max_abs_w_ = m[0];
       max_speed_ = m[1];
@@ -236,10 +294,15 @@ private:
       probe_peak_.assign(pp.data(), pp.data() + np);
       const Eigen::VectorXd& e = historyEntry(h, "run/last_energy", 10);
       last_energy_ = Energy{e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9]};
+      constexpr long kMaxBytes = 1L << 53; // doubles hold every integer up to here
+      for (int t = 0; t < 3; ++t)
+        resumed_bytes_[t] =
+            static_cast<std::uintmax_t>(historyInteger(h, "run/csv_bytes", 3, t, 0, kMaxBytes));
+      resumed_field_times_ = resumedFieldTimes(h, sim);
+      warnOnOtherThreadCount(c.data, path);
     } catch (const Error& e) {
       throw Error("checkpoint does not fit this run: " + e.message(), where);
     }
-    warnOnOtherThreadCount(c.data, path);
     return c;
   }
 
@@ -418,6 +481,9 @@ private:
   std::unique_ptr<FieldWriter> fields_;
   std::unique_ptr<CsvWriter> probes_, energy_, reactions_;
   std::vector<double> peak_reaction_, probe_peak_;
+  long steps_ = 0;                             // steps of the whole run
+  std::uintmax_t resumed_bytes_[3] = {0, 0, 0}; // a checkpoint's table sizes
+  std::vector<double> resumed_field_times_;    // and field times
   Energy last_energy_;
   double max_abs_w_ = 0, max_speed_ = 0, max_balance_ = 0, energy_scale_ = 0;
   double max_disp_ = 0, peak_total_reaction_ = 0;
@@ -447,6 +513,7 @@ nlohmann::json runCase(const Model& model, const RunOptions& options) {
                           {"peak_total_reaction", s["peak_reaction_total"]},
                           {"reactions", s["reactions"]}};
   };
+  removeTemporaries(options.out_dir, {"summary.json"}); // as runModel() does in its folder
   RunOptions with = options, without = options;
   with.out_dir = options.out_dir / "with-drag";
   without.out_dir = options.out_dir / "without-drag";

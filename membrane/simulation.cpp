@@ -61,6 +61,7 @@ Simulation::Simulation(const Model& model)
                                                       model.time.damping);
   else
     integrator_ = std::make_unique<Newmark>(model, *structure_, loads_, cons_);
+  loads_.setStep(integrator_->timeStep()); // each step receives its interval's impulse
   const int ndof = model.numDofs();
   state_.u = model.u0.size() == ndof ? model.u0 : Eigen::VectorXd::Zero(ndof);
   state_.v = model.v0.size() == ndof ? model.v0 : Eigen::VectorXd::Zero(ndof);
@@ -111,39 +112,80 @@ void Simulation::save(History& h) const {
     h[kIntegrator + key] = std::move(value);
 }
 
-void Simulation::restore(const History& h) {
+namespace {
+/// A failure criterion stored as a double: one of FailureCriterion's values.
+FailureCriterion criterionAt(const History& h, const std::string& key, Eigen::Index size,
+                             Eigen::Index i) {
+  return static_cast<FailureCriterion>(historyInteger(h, key, size, i, 0, 2));
+}
+
+/// Throws naming @p key unless @p t is -1 (no failure) or in [0, @p now].
+void checkFailureTime(const std::string& key, double t, double now) {
+  if (!(t == -1 || (t >= 0 && t <= now)))
+    throw Error("checkpoint entry '" + key + "' holds the failure time " + core::formatShort(t) +
+                " s, neither -1 (none) nor in [0, " + core::formatShort(now) + "] s");
+}
+} // namespace
+
+void Simulation::restoreFailure(const History& h) {
+  failure_ = FailureRecord{};
+  const auto ne = model_.mesh.numElements();
+  if (h.count("failure/time")) {
+    const Eigen::VectorXd& t = historyEntry(h, "failure/time", ne);
+    for (Eigen::Index e = 0; e < ne; ++e) {
+      checkFailureTime("failure/time", t[e], state_.t);
+      const FailureCriterion c = criterionAt(h, "failure/criterion", ne, e);
+      if ((t[e] < 0) != (c == FailureCriterion::None))
+        throw Error("checkpoint entries 'failure/time' and 'failure/criterion' disagree on "
+                    "element " +
+                    std::to_string(e));
+      failure_.criterion.push_back(c);
+    }
+    failure_.time.assign(t.data(), t.data() + ne);
+  } else if (h.count("failure/criterion")) {
+    throw Error("checkpoint has an entry 'failure/criterion' without 'failure/time'");
+  }
+  failure_.first_element = static_cast<int>(historyInteger(h, "failure/first", 3, 0, -1, ne - 1));
+  failure_.first_time = historyEntry(h, "failure/first", 3)[1];
+  checkFailureTime("failure/first", failure_.first_time, state_.t);
+  failure_.first_criterion = criterionAt(h, "failure/first", 3, 2);
+  if ((failure_.first_element < 0) != (failure_.first_criterion == FailureCriterion::None))
+    throw Error("checkpoint entry 'failure/first' names an element without a criterion or a "
+                "criterion without an element");
+}
+
+void Simulation::restore(const History& h, long last_step) {
   const double dt = historyEntry(h, "integrator/dt", 1)[0];
   if (dt != integrator_->timeStep())
     throw Error("checkpoint was written with the time step " + core::formatExact(dt) +
                 " s, this run's is " + core::formatExact(integrator_->timeStep()) +
                 " s (another case or another build of the program)");
   const Eigen::Index n = model_.numDofs();
-  const Eigen::VectorXd& time = historyEntry(h, "state/time", 2);
-  state_.t = time[0];
-  state_.step = static_cast<long>(time[1]);
+  state_.step = historyInteger(h, "state/time", 2, 1, 0, last_step);
+  state_.t = historyEntry(h, "state/time", 2)[0];
+  // The schemes compute t_n as n * dt (no accumulated round-off): exactly.
+  if (state_.t != static_cast<double>(state_.step) * dt)
+    throw Error("checkpoint entry 'state/time' holds t = " + core::formatExact(state_.t) +
+                " s at step " + std::to_string(state_.step) + ", not step * dt = " +
+                core::formatExact(static_cast<double>(state_.step) * dt) + " s");
   state_.u = historyEntry(h, "state/u", n);
   state_.v = historyEntry(h, "state/v", n);
   state_.a = historyEntry(h, "state/a", n);
   const Eigen::VectorXd& w = historyEntry(h, "works", 6);
   works_ = Works{w[0], w[1], w[2], w[3], w[4], w[5]};
-  failure_ = FailureRecord{};
-  if (h.count("failure/time")) {
-    const auto ne = model_.mesh.numElements();
-    const Eigen::VectorXd& t = historyEntry(h, "failure/time", ne);
-    const Eigen::VectorXd& c = historyEntry(h, "failure/criterion", ne);
-    failure_.time.assign(t.data(), t.data() + ne);
-    for (Eigen::Index e = 0; e < ne; ++e)
-      failure_.criterion.push_back(static_cast<FailureCriterion>(static_cast<int>(c[e])));
-  }
-  const Eigen::VectorXd& first = historyEntry(h, "failure/first", 3);
-  failure_.first_element = static_cast<int>(first[0]);
-  failure_.first_time = first[1];
-  failure_.first_criterion = static_cast<FailureCriterion>(static_cast<int>(first[2]));
+  restoreFailure(h);
   History own;
   const std::string prefix = kIntegrator;
   for (auto it = h.lower_bound(prefix); it != h.end() && it->first.rfind(prefix, 0) == 0; ++it)
     own[it->first.substr(prefix.size())] = it->second;
-  integrator_->restoreHistory(own);
+  try {
+    integrator_->restoreHistory(own);
+  } catch (const Error& e) { // name the entries as the file does: "integrator/<key>"
+    std::string m = e.message();
+    for (auto at = m.find("entry '"); at != std::string::npos; at = m.find("entry '", at + 1))
+      m.insert(at + 7, prefix);
+    throw Error(m, e.context());
+  }
 }
 
 Energy Simulation::energy() const {

@@ -90,12 +90,17 @@ public:
   /// The loads hold no state (they are functions of t, u and v).
   void save(History& h) const;
   /// Restores what save() wrote, on a simulation just built from the same
-  /// model; the next step() then continues bit for bit. Throws
-  /// lamina::Error naming a missing or mis-sized entry, or when the scheme's
-  /// step differs from the saved one (another case or another build).
-  void restore(const History& h);
+  /// model; the next step() then continues bit for bit. A checkpoint is
+  /// input: throws lamina::Error naming the entry when one is missing or
+  /// mis-sized, when the step count is not an integer in [0, @p last_step]
+  /// or the time not step * dt, when a failure record names no element, no
+  /// criterion or a time after the state's, or when the scheme's step
+  /// differs from the saved one (another case or another build).
+  void restore(const History& h, long last_step);
 
 private:
+  /// restore()'s failure record: element indices, criteria and times checked.
+  void restoreFailure(const History& h);
   const Model& model_;
   std::unique_ptr<Structure> structure_;
   LoadSet loads_;

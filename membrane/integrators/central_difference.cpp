@@ -109,11 +109,7 @@ void CentralDifference::saveHistory(History& h) const {
 }
 
 void CentralDifference::restoreHistory(const History& h) {
-  const Eigen::Index n = structure_.numDofs();
-  restoreForces("forces/", h, cur_);
-  historyEntry(h, "forces/internal", n);
-  historyEntry(h, "forces/external", n);
-  historyEntry(h, "forces/drag", n);
+  restoreForces("forces/", h, cur_); // every force of init(), with its size
   prev_ = cur_;
 }
 

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace lamina::membrane {
@@ -263,12 +264,9 @@ void Newmark::saveHistory(History& h) const {
 void Newmark::restoreHistory(const History& h) {
   const Eigen::Index n = structure_.numDofs();
   a_prev_ = historyEntry(h, "a_prev", n);
-  last_iterations_ = static_cast<int>(historyEntry(h, "last_iterations", 1)[0]);
-  restoreForces("forces/", h, cur_);
-  historyEntry(h, "forces/external", n);
-  historyEntry(h, "forces/drag", n);
-  if (!cons_.empty())
-    historyEntry(h, "forces/reaction", static_cast<Eigen::Index>(cons_.size()));
+  last_iterations_ = static_cast<int>(
+      historyInteger(h, "last_iterations", 1, 0, 0, std::numeric_limits<int>::max()));
+  restoreForces("forces/", h, cur_); // every force of init(), with its size
   solver_->restoreHistory("solver/", h);
   prev_ = cur_; // as after init(): the next step overwrites what it reads of next_
   next_ = cur_;

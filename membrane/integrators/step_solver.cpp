@@ -153,14 +153,12 @@ void StepSolver::saveHistory(const std::string& prefix, History& h) const {
 }
 
 void StepSolver::restoreHistory(const std::string& prefix, const History& h) {
-  const Eigen::VectorXd& c = historyEntry(h, prefix + "counts", 3);
-  solves_ = static_cast<long>(c[0]);
-  total_iterations_ = static_cast<long>(c[1]);
-  const auto k = static_cast<size_t>(c[2]);
-  if (c[2] < 0 || static_cast<int>(k) > projection_)
-    throw Error("checkpoint entry '" + prefix + "counts' holds a projection basis of " +
-                std::to_string(k) + " vectors, the solver keeps at most " +
-                std::to_string(projection_));
+  const std::string counts = prefix + "counts";
+  constexpr long kMaxCount = 1L << 53; // doubles hold every integer up to here
+  solves_ = historyInteger(h, counts, 3, 0, 0, kMaxCount);
+  total_iterations_ = historyInteger(h, counts, 3, 1, 0, kMaxCount);
+  // the projection basis: at most the vectors the solver keeps
+  const auto k = static_cast<size_t>(historyInteger(h, counts, 3, 2, 0, projection_));
   const Eigen::Index n = static_cast<Eigen::Index>(xp_.size());
   X_.resize(k);
   AX_.resize(k);

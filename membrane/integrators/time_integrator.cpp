@@ -1,6 +1,7 @@
 #include "membrane/integrators/time_integrator.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -29,11 +30,11 @@ void saveForces(const std::string& prefix, const StateForces& f, History& h) {
 
 void restoreForces(const std::string& prefix, const History& h, StateForces& f) {
   forEachForce(f, [&](const char* name, Eigen::VectorXd& v) {
-    const auto it = h.find(prefix + name);
-    if (it == h.end())
-      v.resize(0);
-    else
-      v = it->second;
+    const std::string key = prefix + name;
+    if (v.size() == 0 && h.count(key))
+      throw Error("checkpoint has an entry '" + key + "' this run does not have");
+    if (v.size())
+      v = historyEntry(h, key, v.size());
   });
 }
 
@@ -45,6 +46,16 @@ const Eigen::VectorXd& historyEntry(const History& h, const std::string& key, Ei
     throw Error("checkpoint entry '" + key + "' has " + std::to_string(it->second.size()) +
                 " values, this run needs " + std::to_string(size));
   return it->second;
+}
+
+long historyInteger(const History& h, const std::string& key, Eigen::Index size, Eigen::Index i,
+                    long lo, long hi) {
+  const double x = historyEntry(h, key, size)[i];
+  if (!(x >= static_cast<double>(lo) && x <= static_cast<double>(hi)) || x != std::floor(x))
+    throw Error("checkpoint entry '" + key + "' value " + std::to_string(i) + " is " +
+                core::formatShort(x) + ", not an integer in [" + std::to_string(lo) + ", " +
+                std::to_string(hi) + "]");
+  return static_cast<long>(x);
 }
 
 void commitStep(State& s, double t1, Eigen::VectorXd& u1, Eigen::VectorXd& v1,

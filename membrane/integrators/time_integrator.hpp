@@ -69,12 +69,20 @@ using History = std::map<std::string, Eigen::VectorXd>;
 
 /// Saves the non-empty members of @p f under "<prefix>external", "<prefix>drag", ...
 void saveForces(const std::string& prefix, const StateForces& f, History& h);
-/// Restores what saveForces() wrote (a missing member becomes empty).
+/// Restores what saveForces() wrote into @p f, which holds the forces of
+/// the same scheme as init() left them: an entry must be present exactly for
+/// the members that are non-empty there, with their sizes (a checkpoint is
+/// input: a missing, extra or mis-sized entry throws lamina::Error naming it).
 void restoreForces(const std::string& prefix, const History& h, StateForces& f);
 /// @return entry @p key of @p h, which must exist and (when @p size >= 0)
 /// have @p size values; throws lamina::Error naming the key otherwise
 const Eigen::VectorXd& historyEntry(const History& h, const std::string& key,
                                     Eigen::Index size = -1);
+/// @return value @p i of entry @p key of @p h (which must hold @p size
+/// values) as an integer, which must be one (no fraction) in [@p lo, @p hi];
+/// throws lamina::Error naming the key and the range otherwise
+long historyInteger(const History& h, const std::string& key, Eigen::Index size, Eigen::Index i,
+                    long lo, long hi);
 
 /// A time-stepping scheme (see the file comment for the contract).
 class TimeIntegrator {

@@ -22,16 +22,12 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
   if (type == "rectangle") {
     const double Lx = r.getDouble("Lx");
     const double Ly = r.getDouble("Ly", Lx);
-    const auto nx = r.getInt("nx");
-    const auto ny = r.getInt("ny", nx);
+    const auto nx = r.getIntIn("nx", 1, 100000);
+    const auto ny = r.getIntIn("ny", 1, 100000, nx);
     if (!(Lx > 0))
       r.fail("Lx", "must be > 0");
     if (!(Ly > 0))
       r.fail("Ly", "must be > 0");
-    if (nx < 1 || nx > 100000)
-      r.fail("nx", "must be in [1, 100000]");
-    if (ny < 1 || ny > 100000)
-      r.fail("ny", "must be in [1, 100000]");
     requireRunMemory(double(nx + 1) * double(ny + 1),
                      "a " + std::to_string(nx) + " x " + std::to_string(ny) + " rectangle",
                      {r.file(), 0, r.path("nx")});

@@ -10,11 +10,46 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
+#include <string>
+#include <vector>
 
 namespace lamina::membrane::case_io {
+
+namespace {
+/// Optional integer key @p key of @p t in [@p lo, INT_MAX] with a default:
+/// read as 64 bits, so a value beyond an int is refused, never wrapped.
+int intIn(const core::TableReader& t, std::string_view key, int lo, int fallback) {
+  return static_cast<int>(t.getIntIn(key, lo, std::numeric_limits<int>::max(), fallback));
+}
+/// The keys of [time] that one scheme reads and the other would ignore.
+const std::vector<const char*>& schemeOnlyKeys(IntegratorKind scheme) {
+  static const std::vector<const char*> expl{"safety", "damping"};
+  static const std::vector<const char*> newmark{"beta1", "beta2", "hht_alpha", "mass"};
+  return scheme == IntegratorKind::Explicit ? expl : newmark;
+}
+
+/// Refuses the keys (of [time] @p t, and the [solver] table of @p root)
+/// that only the scheme other than @p scheme reads, naming the key and the
+/// scheme: a setting the run would ignore is an error, never a silence.
+void refuseOtherSchemeKeys(const core::TableReader& root, const core::TableReader& t,
+                           IntegratorKind scheme) {
+  const bool expl = scheme == IntegratorKind::Explicit;
+  const std::string why = std::string(" applies to the ") + (expl ? "Newmark" : "explicit") +
+                          " scheme only; this case's time.integrator is \"" +
+                          (expl ? "explicit" : "newmark") + "\"";
+  const IntegratorKind other = expl ? IntegratorKind::Newmark : IntegratorKind::Explicit;
+  for (const char* key : schemeOnlyKeys(other))
+    if (t.has(key))
+      t.fail(key, why.substr(1));
+  if (expl && root.has("solver"))
+    root.fail("solver", "[solver] (the linear solver of the implicit step)" + why);
+}
+} // namespace
 
 /// [time], [solver] and [output].
 void readTimeAndOutput(const core::TableReader& root, Model& model) {
@@ -36,9 +71,7 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
                                  "scheme (its gradient mass cannot be lumped): use integrator = "
                                  "\"newmark\" or micro_inertia = false in the section");
     const bool expl = ts.integrator == IntegratorKind::Explicit;
-    for (const char* key : {"safety", "damping"})
-      if (!expl && t.has(key))
-        t.fail(key, "needs integrator = \"explicit\"");
+    refuseOtherSchemeKeys(root, t, ts.integrator);
     ts.safety = t.getDouble("safety", ts.safety);
     if (!(ts.safety > 0 && ts.safety <= 1))
       t.fail("safety", "safety factor must be in (0, 1]");
@@ -76,7 +109,8 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
       ts.beta1 = 0.5 - ts.hht_alpha;
       ts.beta2 = 0.5 * (1 - ts.hht_alpha) * (1 - ts.hht_alpha);
     }
-    ts.lumped = t.getChoice("mass", {{"consistent", false}, {"lumped", true}}, false);
+    // The explicit scheme lumps the mass (row sums): its energies use that mass too.
+    ts.lumped = expl || t.getChoice("mass", {{"consistent", false}, {"lumped", true}}, false);
   }
   if (auto s = root.optionalTable("solver")) {
     auto& ts = model.time;
@@ -86,28 +120,18 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
     ts.tolerance = s->getDouble("tolerance", ts.tolerance);
     if (!(ts.tolerance > 0 && ts.tolerance < 1))
       s->fail("tolerance", "must be in (0, 1)");
-    ts.max_iterations = static_cast<int>(s->getInt("max_iterations", ts.max_iterations));
-    if (ts.max_iterations < 1)
-      s->fail("max_iterations", "must be >= 1");
-    ts.projection = static_cast<int>(s->getInt("projection", ts.projection));
-    if (ts.projection < 0 || ts.projection > 100)
-      s->fail("projection", "must be in [0, 100]");
-    ts.drag_iterations = static_cast<int>(s->getInt("drag_iterations", ts.drag_iterations));
-    if (ts.drag_iterations < 1)
-      s->fail("drag_iterations", "must be >= 1");
+    ts.max_iterations = intIn(*s, "max_iterations", 1, ts.max_iterations);
+    ts.projection = static_cast<int>(s->getIntIn("projection", 0, 100, ts.projection));
+    ts.drag_iterations = intIn(*s, "drag_iterations", 1, ts.drag_iterations);
     ts.drag_tolerance = s->getDouble("drag_tolerance", ts.drag_tolerance);
   }
   if (auto o = root.optionalTable("output")) {
-    model.output.field_every = static_cast<int>(o->getInt("field_every", 10));
-    model.output.energy_every = static_cast<int>(o->getInt("energy_every", 1));
+    model.output.field_every = intIn(*o, "field_every", 0, 10);
+    model.output.energy_every = intIn(*o, "energy_every", 1, 1);
     model.output.fields = o->getBool("fields", true);
-    model.output.checkpoint_every = o->getInt("checkpoint_every", 0);
-    if (model.output.checkpoint_every < 0)
-      o->fail("checkpoint_every", "must be >= 0 (0: a checkpoint only on SIGINT/SIGTERM)");
-    if (model.output.field_every < 0)
-      o->fail("field_every", "must be >= 0");
-    if (model.output.energy_every < 1)
-      o->fail("energy_every", "must be >= 1");
+    // 0: a checkpoint only on SIGINT/SIGTERM
+    model.output.checkpoint_every = o->getIntIn(
+        "checkpoint_every", 0, std::numeric_limits<std::int64_t>::max(), 0);
   }
 }
 

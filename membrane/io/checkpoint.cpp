@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "core/hdf5_file.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fcntl.h>
@@ -97,14 +98,6 @@ void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& checkp
   }
 }
 
-void removeCheckpointDebris(const std::filesystem::path& path) {
-  const std::string prefix = core::temporaryPrefix(path);
-  std::error_code ec;
-  for (const auto& f : std::filesystem::directory_iterator(path.parent_path(), ec))
-    if (f.path().filename().string().rfind(prefix, 0) == 0)
-      std::filesystem::remove(f.path(), ec);
-}
-
 Checkpoint readCheckpoint(const std::filesystem::path& path) {
   const ErrorContext where{path.string(), 0, ""};
   if (!std::filesystem::is_regular_file(path))
@@ -126,9 +119,12 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
     std::vector<std::uint64_t> dims;
     const std::vector<double> sizes = f.readDoubles("/sizes", dims);
     std::string key;
-    for (std::size_t k = 0; std::getline(keys, key); ++k) {
+    std::size_t k = 0;
+    for (; std::getline(keys, key); ++k) {
       if (k >= sizes.size())
         throw Error("more entries than sizes", where);
+      if (!(sizes[k] >= 0 && sizes[k] == std::floor(sizes[k])))
+        throw Error("entry '" + key + "' has the size " + std::to_string(sizes[k]), where);
       Eigen::VectorXd v;
       if (sizes[k] > 0) {
         const std::vector<double> x = f.readDoubles("/data/" + key, dims);
@@ -138,8 +134,11 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
                       where);
         v = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(x.size()));
       }
-      c.data.emplace(key, std::move(v));
+      if (!c.data.emplace(key, std::move(v)).second)
+        throw Error("entry '" + key + "' appears twice", where);
     }
+    if (k != sizes.size())
+      throw Error("more sizes than entries", where);
   } catch (const Error& e) {
     throw Error("checkpoint is unreadable (truncated, corrupt or not a checkpoint): " +
                     std::string(e.what()),
@@ -147,6 +146,12 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
   }
   if (checksum(c.data) != stored_sum)
     throw Error("checkpoint is corrupt: its checksum does not match its content", where);
+  for (const auto& [key, v] : c.data) // every saved quantity is finite (a diverged run saves none)
+    for (Eigen::Index i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i]))
+        throw Error("checkpoint entry '" + key + "' value " + std::to_string(i) +
+                        " is not finite",
+                    where);
   return c;
 }
 

@@ -34,13 +34,10 @@ std::filesystem::path checkpointPath(const std::filesystem::path& dir);
 /// rename). Throws lamina::Error naming the file on failure.
 void writeCheckpoint(const std::filesystem::path& path, const Checkpoint& checkpoint);
 
-/// Removes the temporaries a checkpoint write killed mid-way left beside
-/// @p path ("checkpoint.h5.tmp.<pid>"); a restart calls it.
-void removeCheckpointDebris(const std::filesystem::path& path);
-
 /// Reads the checkpoint @p path. Throws lamina::Error naming the file when
-/// it is missing, unreadable, truncated, not a checkpoint, or when its
-/// checksum does not match its content.
+/// it is missing, unreadable, truncated, not a checkpoint, when its
+/// checksum does not match its content, or when a value is not finite. What
+/// the values mean is checked by their readers (Simulation::restore, the run).
 Checkpoint readCheckpoint(const std::filesystem::path& path);
 
 /// @return a digest (16 hex digits) of the bytes of case file @p case_file

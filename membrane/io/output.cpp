@@ -4,10 +4,24 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
 namespace lamina::membrane {
+
+void removeTemporaries(const std::filesystem::path& dir, const std::vector<std::string>& files) {
+  std::error_code ec;
+  std::vector<std::filesystem::path> debris;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    for (const auto& f : files)
+      if (name.rfind(core::temporaryPrefix(dir / f), 0) == 0)
+        debris.push_back(entry.path());
+  }
+  for (const auto& p : debris)
+    std::filesystem::remove(p, ec);
+}
 
 FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& stem,
                          const Mesh& mesh, bool deformed_geometry)
@@ -46,6 +60,12 @@ FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& st
     throw Error("cannot continue the field series: the file is missing",
                 {h5_path_.string(), 0, ""});
   file_ = std::make_unique<core::H5File>(h5_path_, core::H5File::Mode::ReadWrite);
+  for (std::size_t k = 0; k < times_.size(); ++k) // the steps the checkpoint counts are all there
+    if (!file_->exists("/steps/" + std::to_string(k) + "/displacement"))
+      throw Error("cannot continue the field series: the checkpoint counts " +
+                      std::to_string(times_.size()) + " steps, step " + std::to_string(k) +
+                      " is missing",
+                  {h5_path_.string(), 0, ""});
   // Steps written after the checkpoint (a crash or kill between two
   // checkpoints) are removed: the continued series holds only what an
   // uninterrupted run writes, even if this run ends before rewriting them.
@@ -140,8 +160,35 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& heade
   bytes_ = header.size() + 1;
 }
 
+namespace {
+/// Throws (naming @p where) unless the first @p bytes of file @p part end a
+/// line and hold exactly @p lines lines.
+void checkLines(const std::filesystem::path& part, std::uintmax_t bytes, std::uintmax_t lines,
+                const ErrorContext& where) {
+  std::ifstream in(part, std::ios::binary);
+  std::uintmax_t seen = 0, left = bytes;
+  char last = '\n';
+  std::vector<char> buf(1 << 16);
+  while (left > 0 && in) {
+    in.read(buf.data(), static_cast<std::streamsize>(std::min<std::uintmax_t>(left, buf.size())));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    seen += static_cast<std::uintmax_t>(std::count(buf.data(), buf.data() + got, '\n'));
+    if (got > 0)
+      last = buf[got - 1];
+    left -= got;
+  }
+  if (left > 0 || last != '\n' || seen != lines)
+    throw Error("cannot continue the table: the checkpoint's " + std::to_string(bytes) +
+                    " bytes hold " + std::to_string(seen) + " lines" +
+                    (last != '\n' ? " and end inside a row" : "") + ", its step needs " +
+                    std::to_string(lines) + " (the header and " + std::to_string(lines - 1) +
+                    " rows)",
+                where);
+}
+} // namespace
+
 CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& header,
-                     std::uintmax_t bytes)
+                     std::uintmax_t bytes, std::uintmax_t rows)
     : path_(path), bytes_(bytes) {
   const std::filesystem::path part = path.string() + ".part";
   if (!std::filesystem::exists(part)) {
@@ -163,6 +210,7 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& heade
     throw Error("cannot continue the table: it holds " + std::to_string(size) +
                     " bytes, the checkpoint expects " + std::to_string(bytes),
                 where);
+  checkLines(part, bytes, rows + 1, where);
   std::filesystem::resize_file(part, bytes);
   out_.open(part, std::ios::app);
   if (!out_)

@@ -24,6 +24,12 @@
 
 namespace lamina::membrane {
 
+/// Removes from folder @p dir the temporaries that an interrupted atomic
+/// write of one of @p files left beside it ("<file>.tmp.<suffix>",
+/// core::temporaryPrefix); other files are left alone. A run calls it on its
+/// output folder before it writes there.
+void removeTemporaries(const std::filesystem::path& dir, const std::vector<std::string>& files);
+
 /// XDMF + HDF5 series: mesh once; per step displacement, velocity, |v|
 /// (nodes) and the structure's element fields (the linear model: strain,
 /// stress in lamina order). With a deformed geometry each step also holds
@@ -42,7 +48,8 @@ public:
   /// after its first @p times.size() steps (later ones, written after the
   /// checkpoint, are removed), with the element-field
   /// layout @p cells of its steps; rewrites the index. Throws lamina::Error
-  /// naming the file when it is missing or unreadable.
+  /// naming the file when it is missing or unreadable, or when one of
+  /// those first steps is missing.
   FieldWriter(const std::filesystem::path& dir, const std::string& stem, const Mesh& mesh,
               bool deformed_geometry, const std::vector<double>& times,
               const std::vector<CellField>& cells);
@@ -68,9 +75,11 @@ public:
   CsvWriter(const std::filesystem::path& path, const std::string& header);
   /// Continues the table of an earlier run: takes "<path>.part" (or <path>,
   /// moved back to "<path>.part"), checks that it starts with @p header and
-  /// holds at least @p bytes, cuts it to @p bytes (rows written after the
-  /// checkpoint go) and appends. Throws lamina::Error naming the file.
-  CsvWriter(const std::filesystem::path& path, const std::string& header, std::uintmax_t bytes);
+  /// that its first @p bytes hold the header and exactly @p rows whole rows,
+  /// cuts it to @p bytes (rows written after the checkpoint go) and
+  /// appends. Throws lamina::Error naming the file.
+  CsvWriter(const std::filesystem::path& path, const std::string& header, std::uintmax_t bytes,
+            std::uintmax_t rows);
   /// Writes one row of numbers (17 significant digits) and flushes.
   void row(const std::vector<double>& values);
   /// Renames the file into place.

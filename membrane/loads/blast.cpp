@@ -310,6 +310,38 @@ double FriedlanderPulse::impulse() const {
   return peak * duration * friedlanderImpulseFraction(decay);
 }
 
+namespace {
+/// int_0^x (1 - s) exp(-b s) ds = x E1(b x) - x^2 E2(b x) with
+/// E1(y) = (1 - e^-y) / y and E2(y) = (1 - e^-y (1 + y)) / y^2; for |y| < 0.1
+/// their series sum_k (-y)^k / (k+1)! and sum_k (-y)^k (k+1) / (k+2)!
+/// (18 terms: the next is below 1e-18 of the sum) avoid the cancellation.
+double friedlanderPrimitive(double b, double x) {
+  const double y = b * x;
+  double e1 = 0, e2 = 0;
+  if (std::abs(y) < 0.1) {
+    double term = 1; // (-y)^k / k!
+    for (int k = 0; k < 18; ++k) {
+      e1 += term / (k + 1);
+      e2 += term / (k + 2);
+      term *= -y / (k + 1);
+    }
+  } else {
+    const double m = -std::expm1(-y); // 1 - e^-y
+    e1 = m / y;
+    e2 = (m - y * std::exp(-y)) / (y * y);
+  }
+  return x * e1 - x * x * e2;
+}
+} // namespace
+
+double FriedlanderPulse::impulseBetween(double tau0, double tau1) const {
+  const double a = std::max(tau0, 0.0), b = std::min(tau1, duration);
+  if (!(b > a))
+    return 0.0;
+  return peak * duration *
+         (friedlanderPrimitive(decay, b / duration) - friedlanderPrimitive(decay, a / duration));
+}
+
 double combineIncidentReflected(double incident, double reflected, double cos_angle) {
   if (cos_angle < 0)
     return incident;
@@ -320,6 +352,11 @@ double combineIncidentReflected(double incident, double reflected, double cos_an
 double BlastHistory::pressure(double t, double cos_angle) const {
   const double tau = t - arrival;
   return combineIncidentReflected(incident.pressure(tau), reflected.pressure(tau), cos_angle);
+}
+
+double BlastHistory::impulseBetween(double t0, double t1, double cos_angle) const {
+  return combineIncidentReflected(incident.impulseBetween(t0 - arrival, t1 - arrival),
+                                  reflected.impulseBetween(t0 - arrival, t1 - arrival), cos_angle);
 }
 
 BlastHistory blastHistory(const BlastParameters& p) {
@@ -359,6 +396,10 @@ PressureTable::PressureTable(std::vector<double> times, std::vector<double> pres
                       " after t = " + formatShort(times_[i - 1]),
                   where);
   }
+  cumulative_.assign(times_.size(), 0.0);
+  for (std::size_t i = 1; i < times_.size(); ++i)
+    cumulative_[i] = cumulative_[i - 1] +
+                     0.5 * (pressures_[i] + pressures_[i - 1]) * (times_[i] - times_[i - 1]);
 }
 
 PressureTable PressureTable::readCsv(const std::string& path) {
@@ -403,6 +444,19 @@ double PressureTable::pressure(double t) const {
   const std::size_t j = static_cast<std::size_t>(hi - times_.begin());
   const double w = (t - times_[j - 1]) / (times_[j] - times_[j - 1]);
   return (1.0 - w) * pressures_[j - 1] + w * pressures_[j];
+}
+
+double PressureTable::integralTo(double t) const {
+  const auto hi = std::upper_bound(times_.begin(), times_.end(), t);
+  if (hi == times_.end())
+    return cumulative_.back();
+  const std::size_t j = static_cast<std::size_t>(hi - times_.begin()); // >= 1 in the range
+  return cumulative_[j - 1] + 0.5 * (t - times_[j - 1]) * (pressures_[j - 1] + pressure(t));
+}
+
+double PressureTable::impulseBetween(double t0, double t1) const {
+  const double a = std::max(t0, times_.front()), b = std::min(t1, times_.back());
+  return b > a ? integralTo(b) - integralTo(a) : 0.0;
 }
 
 double PressureTable::impulse() const {

@@ -111,6 +111,9 @@ struct FriedlanderPulse {
   double pressure(double tau) const;
   /// @return int_0^td p dtau = P td friedlanderImpulseFraction(b), Pa s
   double impulse() const;
+  /// @return int p dtau over [@p tau0, @p tau1] (s after arrival; the
+  /// pressure is 0 outside [0, td]), in closed form, Pa s
+  double impulseBetween(double tau0, double tau1) const;
 };
 
 /// Randers-Pehrson & Bannister (1997) combination for a surface whose normal
@@ -127,6 +130,9 @@ struct BlastHistory {
   /// @return the overpressure at time @p t (s after detonation) on a face
   /// whose normal makes cos a = @p cos_angle with the direction to the charge
   double pressure(double t, double cos_angle) const;
+  /// @return int pressure(t, @p cos_angle) dt over [@p t0, @p t1] (s after
+  /// detonation), Pa s: the combination is linear in the two pulses
+  double impulseBetween(double t0, double t1, double cos_angle) const;
 };
 
 /// Builds the history of @p p (decay constants solved from the impulses).
@@ -165,12 +171,18 @@ public:
   /// @return the integral of p over the table (trapezoids: exact for the
   /// piecewise-linear history), Pa s
   double impulse() const;
+  /// @return the integral of p over [@p t0, @p t1] (exact for the
+  /// piecewise-linear history, 0 outside the table), Pa s
+  double impulseBetween(double t0, double t1) const;
   /// @return the time rows, s
   const std::vector<double>& times() const { return times_; }
 
 private:
+  /// @return int p over [times_.front(), @p t] for t in the table's range
+  double integralTo(double t) const;
   std::vector<double> times_;
   std::vector<double> pressures_;
+  std::vector<double> cumulative_; ///< int p over [times_.front(), times_[i]], Pa s
 };
 
 } // namespace lamina::membrane

@@ -25,17 +25,21 @@ BlastPressure::BlastPressure(std::string name, std::vector<int> elements, Pressu
       table_(std::move(table)) {}
 
 double BlastPressure::pressure(int e, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
-                               double t) const {
+                               const LoadTime& when) const {
+  // The mean over the step's interval (LoadTime): a pulse shorter than the
+  // step delivers its impulse, in closed form (Friedlander) or piecewise
+  // linear (a table).
   if (table_)
-    return table_->pressure(t);
+    return when.mean(table_->impulseBetween(when.from, when.to), table_->pressure(when.t));
   const BlastHistory& h = histories_[static_cast<std::size_t>(e)];
-  const double tau = t - h.arrival;
-  if (tau < 0 || tau > h.incident.duration)
+  if (when.to < h.arrival || when.from > h.arrival + h.incident.duration)
     return 0.0;
   const Eigen::Vector3d d = charge_->position - x;
   const double r = d.norm();
   const double cos_a = r > 0 ? n.dot(d) / r : 1.0;
-  return (cos_a >= 0 ? -1.0 : 1.0) * h.pressure(t, std::abs(cos_a));
+  const double c = std::abs(cos_a);
+  return (cos_a >= 0 ? -1.0 : 1.0) *
+         when.mean(h.impulseBetween(when.from, when.to, c), h.pressure(when.t, c));
 }
 
 double BlastPressure::firstArrival() const {

@@ -37,7 +37,7 @@ public:
 
 protected:
   double pressure(int e, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
-                  double t) const override;
+                  const LoadTime& when) const override;
 
 private:
   std::optional<BlastCharge> charge_;

@@ -5,7 +5,7 @@ namespace lamina::membrane {
 ElementPressure::ElementPressure(std::string name, std::vector<int> elements)
     : name_(std::move(name)), elements_(std::move(elements)) {}
 
-void ElementPressure::add(double t, const Mesh& mesh, const Eigen::VectorXd& u,
+void ElementPressure::add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u,
                           const Eigen::VectorXd& v, Eigen::VectorXd& f) const {
   (void)v;
   for (int e : elements_) {
@@ -17,7 +17,7 @@ void ElementPressure::add(double t, const Mesh& mesh, const Eigen::VectorXd& u,
     const double A = an.norm();
     if (!(A > 0))
       continue;
-    const double p = pressure(e, (x[0] + x[1] + x[2]) / 3.0, an / A, t);
+    const double p = pressure(e, (x[0] + x[1] + x[2]) / 3.0, an / A, when);
     for (int a = 0; a < 3; ++a)
       f.segment<3>(3 * tri[a]) += (p / 3.0) * an;
   }
@@ -29,8 +29,8 @@ UniformPressure::UniformPressure(std::string name, std::vector<int> elements, do
       profile_(std::move(profile)) {}
 
 double UniformPressure::pressure(int, const Eigen::Vector3d&, const Eigen::Vector3d&,
-                                 double t) const {
-  return value_ * profile_(t);
+                                 const LoadTime& when) const {
+  return value_ * profile_(when.t);
 }
 
 } // namespace lamina::membrane

@@ -22,14 +22,15 @@ public:
   ElementPressure(std::string name, std::vector<int> elements);
   WorkKind kind() const override { return WorkKind::External; }
   const std::string& name() const override { return name_; }
-  void add(double t, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+  void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
            Eigen::VectorXd& f) const override;
 
 protected:
   /// @return the pressure (Pa, positive pushes along the normal) on element
-  /// @p e with current centroid @p x and unit normal @p n at time @p t
+  /// @p e with current centroid @p x and unit normal @p n at @p when (its
+  /// mean over when's interval, LoadTime)
   virtual double pressure(int e, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
-                          double t) const = 0;
+                          const LoadTime& when) const = 0;
 
 private:
   std::string name_;
@@ -44,7 +45,7 @@ public:
 
 protected:
   double pressure(int e, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
-                  double t) const override;
+                  const LoadTime& when) const override;
 
 private:
   double value_;

@@ -10,7 +10,7 @@ FollowerDrag::FollowerDrag(std::string name, std::vector<int> elements, double c
     : name_(std::move(name)), elements_(std::move(elements)), cd_(cd), rho_(rho),
       resultant_(resultant) {}
 
-void FollowerDrag::add(double, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+void FollowerDrag::add(const LoadTime&, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                        Eigen::VectorXd& f) const {
   const int n = mesh.numNodes();
   // Current area vectors (sum of A_e n_e / 3) and tributary areas per node.

@@ -22,7 +22,7 @@ public:
   FollowerDrag(std::string name, std::vector<int> elements, double cd, double rho, bool resultant);
   WorkKind kind() const override { return WorkKind::Drag; }
   const std::string& name() const override { return name_; }
-  void add(double t, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+  void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
            Eigen::VectorXd& f) const override;
 
 private:

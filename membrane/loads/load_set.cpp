@@ -1,5 +1,7 @@
 #include "membrane/loads/load_set.hpp"
 
+#include <algorithm>
+
 namespace lamina::membrane {
 
 LoadSet::LoadSet(const Model& model) : model_(model) {
@@ -11,11 +13,11 @@ LoadSet::LoadSet(const Model& model) : model_(model) {
   }
 }
 
-void LoadSet::addSurface(WorkKind kind, double t, const Eigen::VectorXd& u,
+void LoadSet::addSurface(WorkKind kind, const LoadTime& when, const Eigen::VectorXd& u,
                          const Eigen::VectorXd& v, Eigen::VectorXd& f) const {
   for (const auto& l : model_.surface_loads)
     if (l->kind() == kind)
-      l->add(t, model_.mesh, u, v, f);
+      l->add(when, model_.mesh, u, v, f);
 }
 
 void LoadSet::external(double t, const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
@@ -25,8 +27,10 @@ void LoadSet::external(double t, const Eigen::VectorXd& u, Eigen::VectorXd& f) c
     if (s != 0)
       f += s * l.pattern;
   }
-  if (!model_.surface_loads.empty())
-    addSurface(WorkKind::External, t, u, Eigen::VectorXd(), f); // pressures ignore v
+  if (!model_.surface_loads.empty()) {
+    const LoadTime when(t, std::max(0.0, t - half_step_), t + half_step_);
+    addSurface(WorkKind::External, when, u, Eigen::VectorXd(), f); // pressures ignore v
+  }
 }
 
 void LoadSet::drag(const Eigen::VectorXd& u, const Eigen::VectorXd& v, Eigen::VectorXd& f) const {

@@ -24,7 +24,14 @@ public:
   bool hasDrag() const { return has_drag_; }
   /// @return true when the model has springs to the ground
   bool hasSprings() const { return !model_.springs.empty(); }
-  /// f = F(t) at displacements @p u (N, length 3 * nodes).
+  /// Makes external() give the time-dependent loads' means over
+  /// [t - @p dt / 2, t + @p dt / 2] (from 0 at the start; see LoadTime): the
+  /// interval a force at t_n stands for in a scheme of step @p dt, so that
+  /// every step receives the impulse of its interval and the sum over the
+  /// steps is the loads' whole impulse, whatever the step. 0: values at t.
+  void setStep(double dt) { half_step_ = 0.5 * dt; }
+  /// f = F(t) at displacements @p u (N, length 3 * nodes); each
+  /// time-dependent load's mean over the interval setStep() gives.
   void external(double t, const Eigen::VectorXd& u, Eigen::VectorXd& f) const;
   /// f = F_drag at displacements @p u and velocities @p v (N).
   void drag(const Eigen::VectorXd& u, const Eigen::VectorXd& v, Eigen::VectorXd& f) const;
@@ -34,9 +41,10 @@ public:
   std::vector<Eigen::Vector3d> springSums(const Eigen::VectorXd& u) const;
 
 private:
-  void addSurface(WorkKind kind, double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-                  Eigen::VectorXd& f) const;
+  void addSurface(WorkKind kind, const LoadTime& when, const Eigen::VectorXd& u,
+                  const Eigen::VectorXd& v, Eigen::VectorXd& f) const;
   const Model& model_;
+  double half_step_ = 0; ///< half the interval a force stands for (s)
   bool has_external_ = false, has_drag_ = false;
 };
 
