@@ -33,26 +33,9 @@ public:
     const auto start = std::chrono::steady_clock::now();
     if (opt_.restart && !std::filesystem::is_directory(opt_.out_dir))
       throw Error("no output folder to restart from", {opt_.out_dir.string(), 0, ""});
-    std::filesystem::create_directories(opt_.out_dir);
-    // Debris of a run killed while replacing one of its files (the stage
-    // files: the .part tables are rewritten or cut back by the CsvWriter).
-    removeTemporaries(opt_.out_dir, {model_.name + ".xdmf", "summary.json",
-                                     checkpointPath(opt_.out_dir).filename().string()});
     Simulation sim(model_); // assemble K, M; build A; set up its solver
-    const double dt = sim.integrator().timeStep();
-    if (!(model_.time.t_end / dt <= kMaxSteps)) // the explicit stable step may be tiny
-      throw Error("t_end / dt = " + core::formatShort(model_.time.t_end / dt) + " steps; at most " +
-                      core::formatShort(kMaxSteps),
-                  {"", 0, "time.dt"});
-    // Newmark: t_end is a multiple of dt by the case; explicit: cover t_end.
-    steps_ = model_.time.integrator == IntegratorKind::Newmark
-                 ? std::lround(model_.time.t_end / dt)
-                 : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
+    const std::optional<Checkpoint> resumed = prepare(sim);
     const long steps = steps_;
-    std::optional<Checkpoint> resumed;
-    if (opt_.restart)
-      resumed = resume(sim);
-    openOutputs(sim, resumed.has_value());
     core::ProgressLine progress("steps", std::max(1L, steps), opt_.quiet);
     std::optional<DivergenceError> failure;
     if (!resumed)
@@ -109,6 +92,37 @@ public:
   }
 
 private:
+  /// Before the steps: the number of steps, the checkpoint read and
+  /// restored (a restart), the --stop-at-step checked, the output folder
+  /// swept of debris and the outputs opened; @return the checkpoint (restart).
+  std::optional<Checkpoint> prepare(Simulation& sim) {
+    const double dt = sim.integrator().timeStep();
+    if (!(model_.time.t_end / dt <= kMaxSteps)) // the explicit stable step may be tiny
+      throw Error("t_end / dt = " + core::formatShort(model_.time.t_end / dt) + " steps; at most " +
+                      core::formatShort(kMaxSteps),
+                  {"", 0, "time.dt"});
+    // Newmark: t_end is a multiple of dt by the case; explicit: cover t_end.
+    steps_ = model_.time.integrator == IntegratorKind::Newmark
+                 ? std::lround(model_.time.t_end / dt)
+                 : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
+    std::optional<Checkpoint> resumed;
+    if (opt_.restart)
+      resumed = resume(sim);
+    const long stop = opt_.stop_at_step;
+    if (stop > 0 && (stop <= sim.steps() || stop > steps_)) // else the run never stops there
+      throw Error("--stop-at-step " + std::to_string(stop) + " is not one of the steps " +
+                      std::to_string(sim.steps() + 1) + " to " + std::to_string(steps_) +
+                      " this run takes",
+                  {"", 0, "--stop-at-step"});
+    std::filesystem::create_directories(opt_.out_dir);
+    // Debris of a run killed while replacing one of its files (the stage
+    // files: the .part tables are rewritten or cut back by the CsvWriter).
+    removeTemporaries(opt_.out_dir, {model_.name + ".xdmf", "summary.json",
+                                     checkpointPath(opt_.out_dir).filename().string()});
+    openOutputs(sim, resumed.has_value());
+    return resumed;
+  }
+
   /// The element fields of the current state (with the failure map).
   std::vector<CellField> fieldCells(const Simulation& sim) const {
     auto cells = sim.structure().cellFields(sim.u());

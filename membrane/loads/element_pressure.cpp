@@ -30,7 +30,7 @@ UniformPressure::UniformPressure(std::string name, std::vector<int> elements, do
 
 double UniformPressure::pressure(int, const Eigen::Vector3d&, const Eigen::Vector3d&,
                                  const LoadTime& when) const {
-  return value_ * profile_(when.t);
+  return value_ * when.mean(profile_.integral(when.from, when.to), profile_(when.t));
 }
 
 } // namespace lamina::membrane

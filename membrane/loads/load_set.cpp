@@ -22,15 +22,14 @@ void LoadSet::addSurface(WorkKind kind, const LoadTime& when, const Eigen::Vecto
 
 void LoadSet::external(double t, const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
   f.setZero(model_.numDofs());
+  const LoadTime when(t, std::max(0.0, t - half_step_), t + half_step_);
   for (const auto& l : model_.loads) {
-    const double s = l.profile(t);
+    const double s = when.mean(l.profile.integral(when.from, when.to), l.profile(t));
     if (s != 0)
       f += s * l.pattern;
   }
-  if (!model_.surface_loads.empty()) {
-    const LoadTime when(t, std::max(0.0, t - half_step_), t + half_step_);
+  if (!model_.surface_loads.empty())
     addSurface(WorkKind::External, when, u, Eigen::VectorXd(), f); // pressures ignore v
-  }
 }
 
 void LoadSet::drag(const Eigen::VectorXd& u, const Eigen::VectorXd& v, Eigen::VectorXd& f) const {

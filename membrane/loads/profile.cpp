@@ -39,6 +39,9 @@ TimeProfile TimeProfile::read(const core::TableReader& r) {
         r.fail("table", "table times must increase strictly");
       p.tt_.push_back(row[0]);
       p.ff_.push_back(row[1]);
+      p.cum_.push_back(p.cum_.empty() ? 0.0
+                                      : p.cum_.back() + 0.5 * (p.ff_.end()[-2] + row[1]) *
+                                                            (row[0] - p.tt_.end()[-2]));
     }
   }
   return p;
@@ -61,6 +64,33 @@ double TimeProfile::operator()(double t) const {
   const auto k = static_cast<size_t>(std::upper_bound(tt_.begin(), tt_.end(), t) - tt_.begin());
   const double s = (t - tt_[k - 1]) / (tt_[k] - tt_[k - 1]);
   return ff_[k - 1] + s * (ff_[k] - ff_[k - 1]);
+}
+
+double TimeProfile::primitive(double t) const {
+  switch (kind_) {
+  case Kind::Constant:
+    return t;
+  case Kind::Step:
+    return std::max(0.0, t - t0_);
+  case Kind::Ramp: {
+    const double s = std::clamp(t - t0_, 0.0, rise_);
+    return 0.5 * s * s / rise_ + std::max(0.0, t - t0_ - rise_);
+  }
+  case Kind::Pulse:
+    return std::clamp(t - t0_, 0.0, duration_);
+  case Kind::Table:
+    break;
+  }
+  if (t <= tt_.front())
+    return ff_.front() * (t - tt_.front());
+  if (t >= tt_.back())
+    return cum_.back() + ff_.back() * (t - tt_.back());
+  const auto k = static_cast<size_t>(std::upper_bound(tt_.begin(), tt_.end(), t) - tt_.begin());
+  return cum_[k - 1] + 0.5 * (ff_[k - 1] + (*this)(t)) * (t - tt_[k - 1]);
+}
+
+double TimeProfile::integral(double t0, double t1) const {
+  return primitive(t1) - primitive(t0);
 }
 
 } // namespace lamina::membrane

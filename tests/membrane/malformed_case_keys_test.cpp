@@ -99,3 +99,24 @@ TEST(MalformedCaseKeys, ProgramRefusesWrappedIntegerAndOtherSchemeKey) {
     EXPECT_FALSE(std::filesystem::exists(out / "summary.json")) << set;
   }
 }
+
+// --stop-at-step beyond the run's steps (also 2^64 + 1, which the parser
+// saturates), or not after a restart's checkpoint, never stops the run: refused.
+TEST(MalformedCaseKeys, StopAtStepOutsideTheRunIsRefused) {
+  const test::Folder dir("stop-at-step");
+  const std::string c3 = test::sourcePath("cases/membrane/case3.toml").string();
+  const std::string out = (dir.path / "run").string();
+  for (const char* stop : {"61", "18446744073709551617"}) {
+    const auto r = lamina::test::run(
+        test::membraneCommand({"run", c3, "--out", out, "--stop-at-step", stop}));
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_NE(r.output.find("--stop-at-step"), std::string::npos) << r.output;
+  }
+  auto r = lamina::test::run(
+      test::membraneCommand({"run", c3, "--out", out, "--stop-at-step", "10"}));
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = lamina::test::run(
+      test::membraneCommand({"run", c3, "--restart", out, "--stop-at-step", "10"}));
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("steps 11 to 60"), std::string::npos) << r.output;
+}
