@@ -20,22 +20,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A struck square on Newmark, 30 steps, probes, reactions, fields every 3
-/// and energies every 2 steps.
-std::string strikeCase() {
-  return test::isotropicSquare(4) +
-         "[time]\ndt = 1.0e-5\nt_end = 3.0e-4\n[[fixed]]\nnodes = \"edges\"\n"
-         "[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n"
-         "[[probe]]\nname = \"c\"\nat = [0.5, 0.5]\n[output]\nfield_every = 3\nenergy_every = 2\n";
-}
-
-/// A run of strikeCase() stopped at step 10 with its checkpoint, kept
+/// A run of the struck square (30 Newmark steps, a probe, reactions,
+/// fields every 3 and energies every 2 steps) stopped at step 10 with its
+/// checkpoint, kept
 /// aside so that each edit starts from the original.
 class EditedCheckpoint : public ::testing::Test {
 protected:
   static void SetUpTestSuite() {
     dir_ = new test::Folder("checkpoint-edits");
-    model_ = new Model(test::modelFromText(strikeCase(), "edited.toml"));
+    model_ = new Model(test::modelFromText(
+        test::strikeCase("[output]\nfield_every = 3\nenergy_every = 2\n"), "edited.toml"));
     RunOptions opt;
     opt.out_dir = dir_->path / "run";
     opt.quiet = true;

@@ -17,13 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// A struck square, 30 Newmark steps, probes and reactions.
-std::string strikeCase() {
-  return test::isotropicSquare(4) +
-         "[time]\ndt = 1.0e-5\nt_end = 3.0e-4\n[[fixed]]\nnodes = \"edges\"\n"
-         "[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n"
-         "[[probe]]\nname = \"c\"\nat = [0.5, 0.5]\n";
-}
+using test::strikeCase;
 
 /// A folder holding a run of strikeCase() stopped at step 10 with its checkpoint.
 struct Stopped {

@@ -20,6 +20,16 @@
 
 namespace lamina::membrane::test {
 
+/// The restart tests' case: a struck square, 30 Newmark steps, a probe,
+/// reactions, and @p extra appended (e.g. an [output] table).
+inline std::string strikeCase(const std::string& extra = "") {
+  return isotropicSquare(4) +
+         "[time]\ndt = 1.0e-5\nt_end = 3.0e-4\n[[fixed]]\nnodes = \"edges\"\n"
+         "[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n"
+         "[[probe]]\nname = \"c\"\nat = [0.5, 0.5]\n" +
+         extra;
+}
+
 /// A fresh folder in the temp folder, removed at the end of the test.
 struct Folder {
   /// Creates <tmp>/<pid>-<name> (emptied first).
