@@ -121,6 +121,13 @@ std::vector<T> readAll(hid_t file, const std::string& name, hid_t type,
   std::vector<hsize_t> d(static_cast<std::size_t>(std::max(rank, 0)));
   H5Sget_simple_extent_dims(space.id(), d.data(), nullptr);
   dims.assign(d.begin(), d.end());
+  // The stored type must be a number of the kind asked for, of at most 8
+  // bytes: a corrupted size (4 GB per value) made H5Dread allocate that much.
+  H5Handle stored(H5Dget_type(set.id()), H5Tclose);
+  if (stored.id() < 0 || H5Tget_class(stored.id()) != H5Tget_class(type) ||
+      H5Tget_size(stored.id()) > 8)
+    throw Error("dataset does not hold numbers of the expected kind (at most 8 bytes each)",
+                {self.path().string(), 0, name});
   std::size_t n = 1;
   for (hsize_t x : d)
     n *= x;

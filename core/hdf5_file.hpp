@@ -50,7 +50,9 @@ public:
   /// Writes a dataset of 32-bit integers with shape @p dims.
   void writeInts(const std::string& name, const std::int32_t* data,
                  const std::vector<std::uint64_t>& dims);
-  /// Reads a dataset of doubles; @p dims receives its shape.
+  /// Reads a dataset of doubles; @p dims receives its shape. Throws
+  /// lamina::Error naming the file and dataset unless it stores numbers of
+  /// the kind asked for (float here, integer below) of at most 8 bytes each.
   std::vector<double> readDoubles(const std::string& name, std::vector<std::uint64_t>& dims) const;
   /// Reads a dataset of integers; @p dims receives its shape.
   std::vector<std::int32_t> readInts(const std::string& name,

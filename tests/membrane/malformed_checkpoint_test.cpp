@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <limits>
 
@@ -185,6 +186,35 @@ TEST_F(EditedCheckpoint, TableSizesAndFieldTimesMatchTheOutputs) {
         v.conservativeResize(v.size() - 1);
       },
       "run/field_times");
+}
+
+// The container itself: the size of the stored float type corrupted (to
+// 4294901913 bytes per value, found by fuzz/checkpoint_fuzzer.cpp): HDF5
+// then allocated gigabytes to read 27 doubles. Refused as unreadable.
+TEST_F(EditedCheckpoint, CorruptedTypeSizeIsRefusedBeforeReading) {
+  const std::string e = restartAfter([](History&) {});
+  ASSERT_EQ(e, "");
+  reset();
+  std::string bytes = test::slurp(file());
+  // HDF5's datatype message of an IEEE little-endian double: class 1
+  // (version 1), bit field 0x20 0x3f 0x00, size 8 (4 bytes).
+  const std::string f64("\x11\x20\x3f\x00\x08\x00\x00\x00", 8);
+  std::size_t patched = 0;
+  for (auto at = bytes.find(f64); at != std::string::npos; at = bytes.find(f64, at + 1), ++patched)
+    bytes.replace(at + 4, 4, std::string("\x99\xff\xfe\xff", 4));
+  ASSERT_GT(patched, 0u) << "no double type message found";
+  std::ofstream(file(), std::ios::binary | std::ios::trunc) << bytes;
+  RunOptions opt;
+  opt.out_dir = out();
+  opt.quiet = true;
+  opt.restart = true;
+  try {
+    runModel(*model_, opt);
+    FAIL() << "the corrupted checkpoint ran";
+  } catch (const lamina::Error& e) {
+    EXPECT_NE(std::string(e.what()).find(file().string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("expected kind"), std::string::npos) << e.what();
+  }
 }
 
 // The program: the edits that crashed (SIGSEGV: a reaction array of the
