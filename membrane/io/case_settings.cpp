@@ -49,6 +49,17 @@ void refuseOtherSchemeKeys(const core::TableReader& root, const core::TableReade
   if (expl && root.has("solver"))
     root.fail("solver", "[solver] (the linear solver of the implicit step)" + why);
 }
+/// [output].
+void readOutput(const core::TableReader& root, Model& model) {
+  if (auto o = root.optionalTable("output")) {
+    model.output.field_every = intIn(*o, "field_every", 0, 10);
+    model.output.energy_every = intIn(*o, "energy_every", 1, 1);
+    model.output.fields = o->getBool("fields", true);
+    // 0: a checkpoint only on SIGINT/SIGTERM
+    model.output.checkpoint_every = o->getIntIn(
+        "checkpoint_every", 0, std::numeric_limits<std::int64_t>::max(), 0);
+  }
+}
 } // namespace
 
 /// [time], [solver] and [output].
@@ -125,14 +136,7 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
     ts.drag_iterations = intIn(*s, "drag_iterations", 1, ts.drag_iterations);
     ts.drag_tolerance = s->getDouble("drag_tolerance", ts.drag_tolerance);
   }
-  if (auto o = root.optionalTable("output")) {
-    model.output.field_every = intIn(*o, "field_every", 0, 10);
-    model.output.energy_every = intIn(*o, "energy_every", 1, 1);
-    model.output.fields = o->getBool("fields", true);
-    // 0: a checkpoint only on SIGINT/SIGTERM
-    model.output.checkpoint_every = o->getIntIn(
-        "checkpoint_every", 0, std::numeric_limits<std::int64_t>::max(), 0);
-  }
+  readOutput(root, model);
 }
 
 /// Features only the explicit integrator has.
