@@ -7,6 +7,7 @@
 #include "core/progress.hpp"
 #include "membrane/io/checkpoint.hpp"
 #include "membrane/io/output.hpp"
+#include "membrane/loads/blast_pressure.hpp"
 #include "membrane/simulation.hpp"
 
 #include <omp.h>
@@ -114,6 +115,7 @@ private:
                       std::to_string(sim.steps() + 1) + " to " + std::to_string(steps_) +
                       " this run takes",
                   {"", 0, "--stop-at-step"});
+    warnOnUnresolvedPulses(sim.integrator().timeStep());
     std::filesystem::create_directories(opt_.out_dir);
     // Debris of a run killed while replacing one of its files (the stage
     // files: the .part tables are rewritten or cut back by the CsvWriter).
@@ -318,6 +320,20 @@ private:
       throw Error("checkpoint does not fit this run: " + e.message(), where);
     }
     return c;
+  }
+
+  /// Warns (stderr) when the step @p dt is longer than a blast's positive
+  /// phase: the steps still receive the pulse's impulse (each the mean over
+  /// its interval), but neither its shape nor its work is resolved.
+  void warnOnUnresolvedPulses(double dt) const {
+    for (const auto& load : model_.surface_loads)
+      if (const auto* blast = dynamic_cast<const BlastPressure*>(load.get()))
+        if (const double phase = blast->shortestPhase(); dt > phase)
+          std::cerr << "warning: [[blast]] '" << blast->name() << "': the time step "
+                    << core::formatShort(dt) << " s is longer than its positive phase "
+                    << core::formatShort(phase)
+                    << " s: each step receives the pulse's impulse, but neither its shape nor "
+                       "the work it does is resolved (lower time.dt or time.safety)\n";
   }
 
   /// Warns (stderr) when checkpoint @p h was written with another number

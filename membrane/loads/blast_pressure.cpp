@@ -51,6 +51,15 @@ double BlastPressure::firstArrival() const {
   return t;
 }
 
+double BlastPressure::shortestPhase() const {
+  if (table_)
+    return table_->times().back() - table_->times().front();
+  double d = std::numeric_limits<double>::infinity();
+  for (const int e : loaded_)
+    d = std::min(d, histories_[static_cast<std::size_t>(e)].incident.duration);
+  return d;
+}
+
 double BlastPressure::lastEnd() const {
   if (table_)
     return table_->times().back();

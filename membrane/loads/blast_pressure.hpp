@@ -34,6 +34,9 @@ public:
   double firstArrival() const;
   /// @return the latest end of a positive phase (s; table: its last time)
   double lastEnd() const;
+  /// @return the shortest positive phase of the loaded elements (s;
+  /// table: its span from the first to the last row)
+  double shortestPhase() const;
 
 protected:
   double pressure(int e, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
