@@ -46,10 +46,9 @@ std::string caseText(bool fabric) {
 struct Base {
   Base(const std::string& text, const std::string& name) {
     const toml::table doc = core::parseTomlString(text, name + ".toml");
-    model = membrane::buildModel(
-        doc, name + ".toml",
-        {"/nonexistent/lamina-fuzz-library.toml",
-         std::string(LAMINA_SOURCE_DIR) + "/materials/catalog.toml"});
+    model = membrane::buildModel(doc, name + ".toml",
+                                 {"/nonexistent/lamina-fuzz-library.toml",
+                                  std::string(LAMINA_SOURCE_DIR) + "/materials/catalog.toml"});
     dir = fuzz::scratchFile("marker", "").parent_path() / name;
     fs::remove_all(dir);
     membrane::RunOptions opt;

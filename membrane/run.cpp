@@ -154,8 +154,7 @@ private:
       if (!resumed)
         return std::make_unique<CsvWriter>(opt_.out_dir / file, header);
       try {
-        return std::make_unique<CsvWriter>(opt_.out_dir / file, header, resumed_bytes_[t],
-                                           rows[t]);
+        return std::make_unique<CsvWriter>(opt_.out_dir / file, header, resumed_bytes_[t], rows[t]);
       } catch (const Error& e) {
         throw resumedOutputError(e, "run/csv_bytes", k);
       }
@@ -166,8 +165,8 @@ private:
         fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh, deformed);
       else
         try {
-          fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh,
-                                                  deformed, resumed_field_times_, fieldCells(sim));
+          fields_ = std::make_unique<FieldWriter>(opt_.out_dir, model_.name, model_.mesh, deformed,
+                                                  resumed_field_times_, fieldCells(sim));
         } catch (const Error& e) {
           throw resumedOutputError(e, "run/field_times", k);
         }
@@ -511,9 +510,9 @@ private:
   std::unique_ptr<FieldWriter> fields_;
   std::unique_ptr<CsvWriter> probes_, energy_, reactions_;
   std::vector<double> peak_reaction_, probe_peak_;
-  long steps_ = 0;                             // steps of the whole run
+  long steps_ = 0;                              // steps of the whole run
   std::uintmax_t resumed_bytes_[3] = {0, 0, 0}; // a checkpoint's table sizes
-  std::vector<double> resumed_field_times_;    // and field times
+  std::vector<double> resumed_field_times_;     // and field times
   Energy last_energy_;
   double max_abs_w_ = 0, max_speed_ = 0, max_balance_ = 0, energy_scale_ = 0;
   double max_disp_ = 0, peak_total_reaction_ = 0;

@@ -56,8 +56,8 @@ void readOutput(const core::TableReader& root, Model& model) {
     model.output.energy_every = intIn(*o, "energy_every", 1, 1);
     model.output.fields = o->getBool("fields", true);
     // 0: a checkpoint only on SIGINT/SIGTERM
-    model.output.checkpoint_every = o->getIntIn(
-        "checkpoint_every", 0, std::numeric_limits<std::int64_t>::max(), 0);
+    model.output.checkpoint_every =
+        o->getIntIn("checkpoint_every", 0, std::numeric_limits<std::int64_t>::max(), 0);
   }
 }
 } // namespace

@@ -149,8 +149,7 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
   for (const auto& [key, v] : c.data) // every saved quantity is finite (a diverged run saves none)
     for (Eigen::Index i = 0; i < v.size(); ++i)
       if (!std::isfinite(v[i]))
-        throw Error("checkpoint entry '" + key + "' value " + std::to_string(i) +
-                        " is not finite",
+        throw Error("checkpoint entry '" + key + "' value " + std::to_string(i) + " is not finite",
                     where);
   return c;
 }

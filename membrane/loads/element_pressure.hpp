@@ -22,8 +22,8 @@ public:
   ElementPressure(std::string name, std::vector<int> elements);
   WorkKind kind() const override { return WorkKind::External; }
   const std::string& name() const override { return name_; }
-  void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-           Eigen::VectorXd& f) const override;
+  void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u,
+           const Eigen::VectorXd& v, Eigen::VectorXd& f) const override;
 
 protected:
   /// @return the pressure (Pa, positive pushes along the normal) on element

@@ -10,8 +10,8 @@ FollowerDrag::FollowerDrag(std::string name, std::vector<int> elements, double c
     : name_(std::move(name)), elements_(std::move(elements)), cd_(cd), rho_(rho),
       resultant_(resultant) {}
 
-void FollowerDrag::add(const LoadTime&, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-                       Eigen::VectorXd& f) const {
+void FollowerDrag::add(const LoadTime&, const Mesh& mesh, const Eigen::VectorXd& u,
+                       const Eigen::VectorXd& v, Eigen::VectorXd& f) const {
   const int n = mesh.numNodes();
   // Current area vectors (sum of A_e n_e / 3) and tributary areas per node.
   std::vector<Eigen::Vector3d> an(n, Eigen::Vector3d::Zero());

@@ -22,8 +22,8 @@ public:
   FollowerDrag(std::string name, std::vector<int> elements, double cd, double rho, bool resultant);
   WorkKind kind() const override { return WorkKind::Drag; }
   const std::string& name() const override { return name_; }
-  void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-           Eigen::VectorXd& f) const override;
+  void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u,
+           const Eigen::VectorXd& v, Eigen::VectorXd& f) const override;
 
 private:
   std::string name_;

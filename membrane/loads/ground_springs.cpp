@@ -5,8 +5,8 @@ namespace lamina::membrane {
 GroundSprings::GroundSprings(std::string name, std::vector<int> dofs, double k)
     : name_(std::move(name)), dofs_(std::move(dofs)), k_(k) {}
 
-void GroundSprings::add(const LoadTime&, const Mesh&, const Eigen::VectorXd& u, const Eigen::VectorXd&,
-                        Eigen::VectorXd& f) const {
+void GroundSprings::add(const LoadTime&, const Mesh&, const Eigen::VectorXd& u,
+                        const Eigen::VectorXd&, Eigen::VectorXd& f) const {
   for (int d : dofs_)
     f[d] -= k_ * u[d];
 }

@@ -17,8 +17,8 @@ public:
   GroundSprings(std::string name, std::vector<int> dofs, double k);
   WorkKind kind() const override { return WorkKind::Spring; }
   const std::string& name() const override { return name_; }
-  void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-           Eigen::VectorXd& f) const override;
+  void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u,
+           const Eigen::VectorXd& v, Eigen::VectorXd& f) const override;
   /// @return the DOFs with a spring
   const std::vector<int>& dofs() const { return dofs_; }
   /// @return the stiffness of each spring (N/m)

@@ -54,8 +54,8 @@ public:
   /// Adds the nodal forces (N) at time @p when (a time-dependent load:
   /// its mean over when's interval), displacements @p u and velocities
   /// @p v of @p mesh (current position x = X + u) to @p f.
-  virtual void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-                   Eigen::VectorXd& f) const = 0;
+  virtual void add(const LoadTime& when, const Mesh& mesh, const Eigen::VectorXd& u,
+                   const Eigen::VectorXd& v, Eigen::VectorXd& f) const = 0;
 };
 
 } // namespace lamina::membrane

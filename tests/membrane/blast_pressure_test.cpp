@@ -192,8 +192,8 @@ TEST(BlastPressure, TableStepsReceiveItsImpulseWhateverTheStep) {
   const BlastPressure load("table", p.elements, table);
   // The same impulse by hand: trapezoids of the rows (the jumps at both
   // ends are part of the history: 0 outside).
-  const double impulse = 0.5 * (5e4 + 2e5) * 0.6e-3 + 0.5 * (2e5 - 1e4) * 0.3e-3 +
-                         0.5 * (-1e4 + 3e4) * 1.7e-3;
+  const double impulse =
+      0.5 * (5e4 + 2e5) * 0.6e-3 + 0.5 * (2e5 - 1e4) * 0.3e-3 + 0.5 * (-1e4 + 3e4) * 1.7e-3;
   for (const double dt : {1e-5, 2.9e-4, 1e-3, 2.6e-3, 7e-3})
     EXPECT_NEAR(stepImpulse(load, p, dt, 0.02, true).z() / (impulse * p.area), 1.0, 1e-12)
         << "dt = " << dt;

@@ -97,8 +97,8 @@ TEST(BlastStepImpulse, FreeSheetGainsTheTableImpulseWhateverTheStep) {
   std::ofstream(csv) << "time,pressure\n1.0e-3,0\n1.1e-3,4.0e4\n1.2e-3,0\n";
   const double impulse = 0.5 * 4e4 * 0.2e-3; // the triangle, Pa s
   for (const double dt : {5e-5, 1e-4, 3e-4, 3e-3}) {
-    const Model m = test::modelFromText(
-        freeSheet(dt, 0.02, "[[blast]]\ntable = \"" + csv.string() + "\"\n"));
+    const Model m =
+        test::modelFromText(freeSheet(dt, 0.02, "[[blast]]\ntable = \"" + csv.string() + "\"\n"));
     EXPECT_NEAR(momentumAtEnd(m).z() / impulse, 1.0, 1e-4) << "dt = " << dt; // area 1 m^2
   }
 }
@@ -147,7 +147,8 @@ TEST(LoadStepImpulse, ProfileIntegralsAreExact) {
   const TimeProfile pulse = profile("profile = \"pulse\"\nt0 = 1.0\nduration = 0.5\n");
   EXPECT_DOUBLE_EQ(pulse.integral(0.0, 10.0), 0.5);
   EXPECT_DOUBLE_EQ(pulse.integral(1.25, 3.0), 0.25);
-  const TimeProfile table = profile("profile = \"table\"\ntable = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0]]\n");
+  const TimeProfile table =
+      profile("profile = \"table\"\ntable = [[0.0, 0.0], [1.0, 2.0], [3.0, 2.0]]\n");
   EXPECT_DOUBLE_EQ(table.integral(-1.0, 4.0), 7.0); // 0, the triangle 1, 2 x 2, then 2 x 1
   EXPECT_DOUBLE_EQ(table.integral(0.5, 1.0), 0.75);
   EXPECT_DOUBLE_EQ(profile("").integral(0.25, 2.0), 1.75); // constant

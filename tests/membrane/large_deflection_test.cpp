@@ -105,7 +105,8 @@ dt = )" + lamina::core::formatExact(dt) +
                                   R"(
 t_end = 4.0e-3
 )" + (integrator == "newmark" ? "mass = \"lumped\"\n" : "") + // explicit always lumps
-                                  R"(integrator = ")" + integrator + R"("
+                                  R"(integrator = ")" +
+                                  integrator + R"("
 [[fixed]]
 nodes = "edges"
 [initial]

@@ -67,9 +67,9 @@ TEST(MalformedCaseKeys, IntegerBeyondItsRangeIsRefusedNotWrapped) {
 }
 
 TEST(MalformedCaseKeys, NewmarkKeysAreRefusedUnderTheExplicitScheme) {
-  for (const char* set : {"time.hht_alpha=-0.1", "time.beta1=0.6", "time.beta2=0.6",
-                          "time.mass=\"lumped\"", "solver.type=\"cg\"",
-                          "solver.max_iterations=10"}) {
+  for (const char* set :
+       {"time.hht_alpha=-0.1", "time.beta1=0.6", "time.beta2=0.6", "time.mass=\"lumped\"",
+        "solver.type=\"cg\"", "solver.max_iterations=10"}) {
     const std::string key = std::string(set).substr(0, std::string(set).find('='));
     const std::string named = key.rfind("solver", 0) == 0 ? "solver" : key;
     expectNames(errorWith(kExplicit, {set}), {named, "Newmark scheme only", "explicit"});
@@ -87,13 +87,12 @@ TEST(MalformedCaseKeys, ExplicitKeysAreRefusedUnderNewmark) {
 TEST(MalformedCaseKeys, ProgramRefusesWrappedIntegerAndOtherSchemeKey) {
   const test::Folder dir("case-keys");
   const std::string c3 = test::sourcePath("cases/membrane/case3.toml").string();
-  for (const auto& [set, key] :
-       std::vector<std::pair<std::string, std::string>>{
+  for (const auto& [set, key] : std::vector<std::pair<std::string, std::string>>{
            {"solver.max_iterations=4294967297", "solver.max_iterations"},
            {"time.safety=0.5", "time.safety"}}) {
     const auto out = dir.path / "run";
-    const auto r = lamina::test::run(
-        test::membraneCommand({"run", c3, "--out", out.string(), "--set", set}));
+    const auto r =
+        lamina::test::run(test::membraneCommand({"run", c3, "--out", out.string(), "--set", set}));
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find(key), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(out / "summary.json")) << set;
@@ -107,13 +106,13 @@ TEST(MalformedCaseKeys, StopAtStepOutsideTheRunIsRefused) {
   const std::string c3 = test::sourcePath("cases/membrane/case3.toml").string();
   const std::string out = (dir.path / "run").string();
   for (const char* stop : {"61", "18446744073709551617"}) {
-    const auto r = lamina::test::run(
-        test::membraneCommand({"run", c3, "--out", out, "--stop-at-step", stop}));
+    const auto r =
+        lamina::test::run(test::membraneCommand({"run", c3, "--out", out, "--stop-at-step", stop}));
     EXPECT_EQ(r.code, 1) << r.output;
     EXPECT_NE(r.output.find("--stop-at-step"), std::string::npos) << r.output;
   }
-  auto r = lamina::test::run(
-      test::membraneCommand({"run", c3, "--out", out, "--stop-at-step", "10"}));
+  auto r =
+      lamina::test::run(test::membraneCommand({"run", c3, "--out", out, "--stop-at-step", "10"}));
   ASSERT_EQ(r.code, 0) << r.output;
   r = lamina::test::run(
       test::membraneCommand({"run", c3, "--restart", out, "--stop-at-step", "10"}));

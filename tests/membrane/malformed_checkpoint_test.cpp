@@ -117,9 +117,9 @@ TEST_F(EditedCheckpoint, StepCountAndTimeAreCheckedAgainstTheCase) {
 
 // Array sizes against the model's DOFs, constraints and probes.
 TEST_F(EditedCheckpoint, SizesAreCheckedAgainstTheModel) {
-  for (const char* key : {"state/u", "state/v", "state/a", "integrator/a_prev",
-                          "integrator/forces/external", "integrator/forces/reaction",
-                          "run/probe_peak", "run/peak_reaction", "works"})
+  for (const char* key :
+       {"state/u", "state/v", "state/a", "integrator/a_prev", "integrator/forces/external",
+        "integrator/forces/reaction", "run/probe_peak", "run/peak_reaction", "works"})
     expectRefused(
         [&](History& h) {
           Eigen::VectorXd& v = h.at(key);
@@ -128,9 +128,8 @@ TEST_F(EditedCheckpoint, SizesAreCheckedAgainstTheModel) {
         },
         key, "values");
   // A force the scheme does not have (springs on a case without springs).
-  expectRefused(
-      [](History& h) { h["integrator/forces/spring"] = h["state/u"]; },
-      "integrator/forces/spring");
+  expectRefused([](History& h) { h["integrator/forces/spring"] = h["state/u"]; },
+                "integrator/forces/spring");
   expectRefused([](History& h) { h.erase("integrator/forces/reaction"); },
                 "integrator/forces/reaction");
 }

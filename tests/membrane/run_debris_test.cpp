@@ -24,8 +24,8 @@ const std::string kCase = test::isotropicSquare(4) +
 std::vector<fs::path> litter(const fs::path& dir, const std::string& stem) {
   fs::create_directories(dir);
   const std::vector<fs::path> debris{dir / (stem + ".xdmf.tmp.4242"),
-                                     dir / (stem + ".xdmf.tmp.aB3xYz"),
-                                     dir / "summary.json.tmp.77", dir / "checkpoint.h5.tmp.9"};
+                                     dir / (stem + ".xdmf.tmp.aB3xYz"), dir / "summary.json.tmp.77",
+                                     dir / "checkpoint.h5.tmp.9"};
   for (const auto& p : debris)
     std::ofstream(p) << "half a file";
   for (const char* keep : {"notes.txt", "other.xdmf.tmp.1", "my.xdmf.tmp"})
