@@ -2,6 +2,9 @@
 
 #include "core/error.hpp"
 
+#include <exception>
+#include <limits>
+
 namespace lamina::core {
 
 H5Handle& H5Handle::operator=(H5Handle&& o) noexcept {
@@ -110,6 +113,29 @@ void H5File::writeInts(const std::string& name, const std::int32_t* data,
 }
 
 namespace {
+/// @return the number of values of dataset @p set of shape @p d whose type
+/// has @p bytes bytes; throws naming the dataset when they cannot be there:
+/// the product overflows, or (no filters, so the values are stored as they
+/// are) they need more bytes than the file holds for the dataset. A
+/// corrupted shape would otherwise allocate without bound before reading.
+std::size_t storedValues(hid_t set, const std::vector<hsize_t>& d, std::size_t bytes,
+                         const H5File& self, const std::string& name) {
+  const ErrorContext where{self.path().string(), 0, name};
+  std::size_t n = 1;
+  for (hsize_t x : d) {
+    if (x != 0 && n > std::numeric_limits<std::size_t>::max() / 8 / x)
+      throw Error("dataset shape is too large", where);
+    n *= x;
+  }
+  H5Handle plist(H5Dget_create_plist(set), H5Pclose);
+  if (plist.id() >= 0 && H5Pget_nfilters(plist.id()) == 0 && n * bytes > H5Dget_storage_size(set))
+    throw Error("dataset holds fewer bytes than its shape needs (" +
+                    std::to_string(H5Dget_storage_size(set)) + " of " + std::to_string(n * bytes) +
+                    ")",
+                where);
+  return n;
+}
+
 template <typename T>
 std::vector<T> readAll(hid_t file, const std::string& name, hid_t type,
                        std::vector<std::uint64_t>& dims, const H5File& self) {
@@ -128,10 +154,14 @@ std::vector<T> readAll(hid_t file, const std::string& name, hid_t type,
       H5Tget_size(stored.id()) > 8)
     throw Error("dataset does not hold numbers of the expected kind (at most 8 bytes each)",
                 {self.path().string(), 0, name});
-  std::size_t n = 1;
-  for (hsize_t x : d)
-    n *= x;
-  std::vector<T> out(n);
+  const std::size_t n = storedValues(set.id(), d, H5Tget_size(stored.id()), self, name);
+  std::vector<T> out;
+  try { // a filtered (compressed) dataset may still claim more than memory holds
+    out.resize(n);
+  } catch (const std::exception&) { // std::bad_alloc, std::length_error
+    throw Error("dataset of " + std::to_string(n) + " values does not fit in memory",
+                {self.path().string(), 0, name});
+  }
   if (n > 0 && H5Dread(set.id(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
     throw Error("cannot read dataset", {self.path().string(), 0, name});
   return out;
