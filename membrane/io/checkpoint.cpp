@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/hdf5_file.hpp"
 
 #include <cmath>
@@ -123,8 +124,9 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
     for (; std::getline(keys, key); ++k) {
       if (k >= sizes.size())
         throw Error("more entries than sizes", where);
-      if (!(sizes[k] >= 0 && sizes[k] == std::floor(sizes[k])))
-        throw Error("entry '" + key + "' has the size " + std::to_string(sizes[k]), where);
+      constexpr double kMaxSize = 9007199254740992.0; // 2^53: every integer below is a double
+      if (!(sizes[k] >= 0 && sizes[k] <= kMaxSize && sizes[k] == std::floor(sizes[k])))
+        throw Error("entry '" + key + "' has the size " + core::formatShort(sizes[k]), where);
       Eigen::VectorXd v;
       if (sizes[k] > 0) {
         const std::vector<double> x = f.readDoubles("/data/" + key, dims);
