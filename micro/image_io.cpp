@@ -1,5 +1,6 @@
 #include "micro/image_io.hpp"
 
+#include "core/parallel.hpp"
 #include "core/resources.hpp"
 #include "micro/image_formats.hpp"
 
@@ -260,26 +261,29 @@ VoxelImage downsampleImage(const VoxelImage& image, int f, const ImageSource& sr
     out.spacing = *image.spacing * f;
   out.value.resize(out.voxels());
   const std::size_t F = static_cast<std::size_t>(f);
+  core::ParallelErrors errors; // the vote count allocates
 #pragma omp parallel for schedule(static)
-  for (int I = 0; I < out.n[0]; ++I) {
-    std::map<std::int32_t, int> votes;
-    for (std::size_t J = 0; J < static_cast<std::size_t>(out.n[1]); ++J)
-      for (std::size_t K = 0; K < static_cast<std::size_t>(out.n[2]); ++K) {
-        votes.clear();
-        for (std::size_t a = 0; a < F; ++a)
-          for (std::size_t b = 0; b < F; ++b)
-            for (std::size_t c = 0; c < F; ++c)
-              ++votes[image.value[detail::xSlowest(image.n, static_cast<std::size_t>(I) * F + a,
-                                                   J * F + b, K * F + c)]];
-        // most votes; std::map iterates labels in increasing order, so a tie
-        // keeps the smallest label
-        auto best = votes.begin();
-        for (auto it = votes.begin(); it != votes.end(); ++it)
-          if (it->second > best->second)
-            best = it;
-        out.value[detail::xSlowest(out.n, static_cast<std::size_t>(I), J, K)] = best->first;
-      }
-  }
+  for (int I = 0; I < out.n[0]; ++I)
+    errors.run([&] {
+      std::map<std::int32_t, int> votes;
+      for (std::size_t J = 0; J < static_cast<std::size_t>(out.n[1]); ++J)
+        for (std::size_t K = 0; K < static_cast<std::size_t>(out.n[2]); ++K) {
+          votes.clear();
+          for (std::size_t a = 0; a < F; ++a)
+            for (std::size_t b = 0; b < F; ++b)
+              for (std::size_t c = 0; c < F; ++c)
+                ++votes[image.value[detail::xSlowest(image.n, static_cast<std::size_t>(I) * F + a,
+                                                     J * F + b, K * F + c)]];
+          // most votes; std::map iterates labels in increasing order, so a tie
+          // keeps the smallest label
+          auto best = votes.begin();
+          for (auto it = votes.begin(); it != votes.end(); ++it)
+            if (it->second > best->second)
+              best = it;
+          out.value[detail::xSlowest(out.n, static_cast<std::size_t>(I), J, K)] = best->first;
+        }
+    });
+  errors.rethrow();
   return out;
 }
 
