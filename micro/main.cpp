@@ -4,8 +4,10 @@
 /// an image in the same formats image cells read: the labels are the phase
 /// ids) and prints the volume fractions reached.
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "materials/catalog.hpp"
 #include "micro/cell.hpp"
 #include "micro/image_cell.hpp"
 #include "micro/phase_map_io.hpp"
@@ -17,6 +19,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <vector>
 
 int main(int argc, char** argv) {
   CLI::App app{"micro: build a voxel unit cell and write its phase map"};
@@ -41,6 +44,19 @@ int main(int argc, char** argv) {
   try {
     using namespace lamina::micro;
     const CellSpec spec = readCell(cell_path, lazyCatalog(catalog));
+    // before anything is built: the outputs replace only regular files, and
+    // none of the run's inputs
+    std::vector<std::filesystem::path> inputs{
+        cell_path, catalog.empty() ? lamina::materials::Catalog::defaultPath()
+                                   : std::filesystem::path(catalog)};
+    if (spec.image)
+      inputs.push_back(spec.image->path);
+    std::filesystem::path xdmf = out;
+    xdmf.replace_extension(".xdmf");
+    lamina::core::checkOutput(out, inputs, "--out");
+    ImageFormat out_format = ImageFormat::Hdf5;
+    if (formatFromExtension(out, out_format) && out_format == ImageFormat::Hdf5)
+      lamina::core::checkOutput(xdmf, inputs, "--out (its .xdmf)");
     std::array<int, 3> n = spec.resolution;
     if (resolution > 0)
       n = {resolution, resolution, resolution};
@@ -88,6 +104,9 @@ int main(int argc, char** argv) {
     return lamina::kExitUserError;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "micro: %s\n", e.what());
+    return lamina::kExitUserError;
+  } catch (...) {
+    std::fputs("micro: unexpected error (not a std::exception)\n", stderr);
     return lamina::kExitUserError;
   }
   return 0;

@@ -1,0 +1,17 @@
+#pragma once
+/// @file cli.hpp
+/// @brief The command line of the `homogenize` program as a function, so
+/// that the program and the argument fuzzer run the same parsing and checks.
+
+#include "homogenize/distribution.hpp"
+
+namespace lamina::homogenize {
+
+/// Parses @p argv (argv[0] is the program name), checks the options, reads
+/// and builds the cell and runs (linear into the library, or nonlinear);
+/// @return the exit code (kExitOk, kExitUserError, kExitUsage,
+/// kExitDivergence). Every error, whatever its type, is printed on stderr
+/// and becomes an exit code (through @p mpi's abort under MPI).
+int runProgram(int argc, char** argv, MpiSession& mpi);
+
+} // namespace lamina::homogenize
