@@ -452,7 +452,7 @@ void run(Cli& cli, lamina::homogenize::MpiSession& mpi) {
 
 namespace lamina::homogenize {
 
-int runProgram(int argc, char** argv, MpiSession& mpi) {
+int runProgram(int argc, char** argv, MpiSession& mpi, UnexpectedErrors unexpected) {
   CLI::App app{"homogenize: effective stiffness and density of a voxel unit cell "
                "(mpirun -np N homogenize ... runs it over N MPI ranks)"};
   Cli cli;
@@ -477,9 +477,13 @@ int runProgram(int argc, char** argv, MpiSession& mpi) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());
     return mpi.abort(lamina::kExitUserError);
   } catch (const std::exception& e) {
+    if (unexpected == UnexpectedErrors::Rethrow)
+      throw;
     std::fprintf(stderr, "homogenize: %s\n", e.what());
     return mpi.abort(lamina::kExitUserError);
   } catch (...) {
+    if (unexpected == UnexpectedErrors::Rethrow)
+      throw;
     std::fprintf(stderr, "homogenize: unexpected error (not a std::exception)\n");
     return mpi.abort(lamina::kExitUserError);
   }

@@ -129,7 +129,7 @@ std::array<double, 21> parseConstants(const std::string& text) {
 
 namespace lamina::materials {
 
-int runProgram(int argc, char** argv) {
+int runProgram(int argc, char** argv, UnexpectedErrors unexpected) {
   CLI::App app{"lamina materials library: list, show, add, layup, export, remove.\n"
                "Stiffness in Pa, lamina order [xx, yy, zz, xy, yz, xz], engineering shear."};
   app.require_subcommand(1);
@@ -316,9 +316,13 @@ int runProgram(int argc, char** argv) {
     std::cerr << "materials: error: " << e.what() << "\n";
     return lamina::kExitUserError;
   } catch (const std::exception& e) {
+    if (unexpected == UnexpectedErrors::Rethrow)
+      throw;
     std::cerr << "materials: error: " << e.what() << "\n";
     return lamina::kExitUserError;
   } catch (...) {
+    if (unexpected == UnexpectedErrors::Rethrow)
+      throw;
     std::cerr << "materials: error: unexpected error (not a std::exception)\n";
     return lamina::kExitUserError;
   }

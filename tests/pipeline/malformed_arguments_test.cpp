@@ -21,10 +21,7 @@ namespace {
 class Arguments : public ::testing::Test {
 protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("lamina_arguments_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
+    dir_ = freshTestDir("lamina_arguments");
     fs::create_directories(dir_ / "folder.csv");
     ASSERT_EQ(::mkfifo((dir_ / "fifo.csv").c_str(), 0644), 0);
     fs::create_symlink("/dev/null", dir_ / "null.csv");
@@ -37,6 +34,13 @@ protected:
   std::string homogenize() const {
     return bin("homogenize") + " " + (kCases / "cells/polyurea.toml").string() +
            " --resolution 4 --quiet";
+  }
+  /// Makes lib.toml holding catalog entry e-glass as @p entry; @return its text.
+  std::string libraryWith(const std::string& entry) const {
+    const Result r = run(bin("materials") + " --library " + at("lib.toml") + " add " + entry +
+                         " --from-catalog e-glass");
+    EXPECT_EQ(r.code, 0) << r.output;
+    return slurp(dir_ / "lib.toml");
   }
   /// The non-regular outputs are still what they were.
   void expectNodesIntact() const {
@@ -80,10 +84,8 @@ TEST_F(Arguments, ErrorsInsideTheSolverAndAbsurdRatesAreCleanErrors) {
 // CSV. Now each is refused before anything runs.
 TEST_F(Arguments, OutputsReplaceOnlyRegularFilesThatAreNotInputs) {
   const fs::path lib = dir_ / "lib.toml";
-  Result r =
-      run(bin("materials") + " --library " + at("lib.toml") + " add glass --from-catalog e-glass");
-  ASSERT_EQ(r.code, 0) << r.output;
-  const std::string library = slurp(lib);
+  const std::string library = libraryWith("glass");
+  Result r{0, ""};
   const std::string drive = bin("materials") + " --library " + at("lib.toml") +
                             " drive polyurea-gvbo --path shear --rate 1e3 --to 0.01 --steps 2 ";
   const std::string path_run = homogenize() + " --path shear --rate 1e4 --to 0.01 --steps 1 ";
@@ -148,10 +150,8 @@ TEST_F(Arguments, StrainPathNeedsRateAndFinalStrainInBothPrograms) {
 // anything is computed: the library is unchanged, not one entry added.
 TEST_F(Arguments, SeveralEntriesWithCollidingNamesAddNothing) {
   const fs::path lib = dir_ / "lib.toml";
-  Result r =
-      run(bin("materials") + " --library " + at("lib.toml") + " add x-J0.9 --from-catalog e-glass");
-  ASSERT_EQ(r.code, 0) << r.output;
-  const std::string library = slurp(lib);
+  const std::string library = libraryWith("x-J0.9");
+  Result r{0, ""};
   const std::string sweep = (dir_ / "sweep.toml").string();
   std::string cell = slurp(kCases / "cells/polyurea-sweep.toml");
   write(sweep, cell);
