@@ -14,7 +14,8 @@
 /// (the target adds them: an input naming them again is a command-line
 /// error), every '/' of a word becomes '_' so that files are only created
 /// in the process's scratch folder (the working directory, emptied after
-/// each input), and HOME, XDG_* and LAMINA_LIBRARY point there too.
+/// each input, the working directory only while it runs), and HOME, XDG_*
+/// and LAMINA_LIBRARY point there too.
 
 #include "fuzz_input.hpp"
 #include "homogenize/cli.hpp"
@@ -54,14 +55,12 @@ volume_fraction = 0.19
 )";
 
 /// The process's scratch folder ($TMPDIR/lamina-fuzz-<pid>/args, as the
-/// other targets'), made the working directory once; the environment points
-/// every default file there.
+/// other targets'); the environment points every default file there.
 const fs::path& workDir() {
   static const lamina::fuzz::ScratchDir scratch; // removed at exit
   static const fs::path dir = [] {
     const fs::path d = scratch.path / "args";
     fs::create_directories(d);
-    fs::current_path(d);
     for (const char* var : {"HOME", "XDG_DATA_HOME", "XDG_CACHE_HOME", "XDG_CONFIG_HOME"})
       ::setenv(var, d.c_str(), 1);
     ::setenv("LAMINA_LIBRARY", (d / "library.toml").c_str(), 1);
@@ -71,6 +70,17 @@ const fs::path& workDir() {
   }();
   return dir;
 }
+
+/// The scratch folder as the working directory while the object lives (an
+/// input's relative paths land there); libFuzzer's own (the corpus and
+/// artifact paths are relative to it) is restored after.
+struct InScratch {
+  explicit InScratch(const fs::path& dir) : home(fs::current_path()) { fs::current_path(dir); }
+  ~InScratch() { fs::current_path(home); }
+  InScratch(const InScratch&) = delete;
+  InScratch& operator=(const InScratch&) = delete;
+  fs::path home;
+};
 
 /// Removes everything the last input created (all but the cell file).
 void clean(const fs::path& dir) {
@@ -115,6 +125,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (materials)
     w.erase(w.begin());
   int code = 0;
+  const InScratch in_scratch(dir);
   lamina::fuzz::guarded([&] {
     if (materials) {
       std::vector<std::string> args{"materials", "drive"};
@@ -128,10 +139,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       static lamina::homogenize::MpiSession mpi(nullptr, nullptr); // serial (fuzz build: no MPI)
       std::vector<std::string> args{"homogenize", "cell.toml"};
       args.insert(args.end(), w.begin(), w.end());
-      for (const std::string a :
-           {std::string("--resolution"), std::to_string(2 + size % 3), std::string("--steps"),
-            std::string("2"), std::string("--threads"), std::string("1"), std::string("--quiet")})
-        args.push_back(a);
+      const std::string resolution = std::to_string(2 + size % 3);
+      for (const char* a :
+           {"--resolution", resolution.c_str(), "--steps", "2", "--threads", "1", "--quiet"})
+        args.emplace_back(a);
       code = runArgs(args, [](int argc, char** argv) {
         return lamina::homogenize::runProgram(argc, argv, mpi, UnexpectedErrors::Rethrow);
       });

@@ -178,8 +178,8 @@ std::vector<std::string> checkTangentSpec(const std::string& base, const Tangent
                                           const materials::Library& library, bool overwrite) {
   if (tangent.rates.empty())
     throw Error("no rate given for the tangent entries", {"", 0, "--tangent-rates"});
-  if (!(tangent.increment > 0) || !std::isfinite(tangent.increment))
-    throw Error("the tangent increment must be positive and finite",
+  if (!(tangent.increment > 0 && tangent.increment <= 1)) // a strain increment
+    throw Error("the tangent increment must be a strain in (0, 1]",
                 {"", 0, "--tangent-increment"});
   if (tangent.strain > 0)
     materials::checkFinalStrain(tangent.path.path, tangent.strain, "--tangent-strain");
