@@ -400,7 +400,7 @@ void Library::checkNewNames(const std::vector<std::string>& names, bool overwrit
                       "' (nothing was added; choose values that print differently)",
                   {"", 0, option});
     if (!overwrite && contains(name))
-      throw Error("entry '" + name + "' exists in " + path_.string() +
+      throw Error("entry '" + name + "' is already in library " + path_.string() +
                       " (use --overwrite or another name; nothing was added)",
                   {"", 0, option});
   }

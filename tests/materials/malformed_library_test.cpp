@@ -259,7 +259,7 @@ TEST(LibraryTransactions, SeveralEntriesAreAddedAllOrNone) {
   std::string msg = errorOf([&] { lib.add(two("p-R1e+05", "p-R1e+05", sideText("b")), false); });
   EXPECT_NE(msg.find("two of the entries to add are named 'p-R1e+05'"), std::string::npos) << msg;
   msg = errorOf([&] { lib.add(two("new", "old", sideText("b")), false); });
-  EXPECT_NE(msg.find("'old' exists"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("'old' is already in library"), std::string::npos) << msg;
   auto failing = [](const fs::path& h5) {
     writeFile(h5, "partial");
     throw lamina::Error("disk full (test)");

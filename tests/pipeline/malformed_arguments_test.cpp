@@ -159,7 +159,7 @@ TEST_F(Arguments, SeveralEntriesWithCollidingNamesAddNothing) {
                            "--library " + at("lib.toml");
   r = run(base); // x-J0.9 exists
   EXPECT_EQ(r.code, 1) << r.output;
-  EXPECT_NE(r.output.find("'x-J0.9' exists"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'x-J0.9' is already in library"), std::string::npos) << r.output;
   cell.replace(cell.find("J = [1.0, 0.95, 0.9]"), 20, "J = [0.95, 0.9500001]");
   write(sweep, cell);
   r = run(base); // both print as x-J0.95
