@@ -125,6 +125,192 @@ std::array<double, 21> parseConstants(const std::string& text) {
   return v;
 }
 
+/// The command line, parsed (every subcommand's options).
+struct Args {
+  std::string library, catalog; ///< --library, --catalog
+  std::string name;             ///< NAME of show, add, layup, export, remove, drive
+  std::string format = "json", from_catalog, constants;
+  std::string path_name = "uniaxial-strain", out, kinematics = "finite";
+  bool list_catalog = false, json = false, overwrite = false;
+  double density = 0;
+  std::vector<std::string> plies;
+  mat::DriveOptions drive;
+
+  /// @return the catalog file: --catalog, else the default
+  std::filesystem::path catalogFile() const {
+    return catalog.empty() ? mat::Catalog::defaultPath() : std::filesystem::path(catalog);
+  }
+};
+
+/// The subcommands, to tell which one was given.
+struct Commands {
+  CLI::App *list, *show, *add, *layup, *export_card, *remove, *drive;
+};
+
+/// Declares `drive` and its options on @p app, into @p a.
+CLI::App* addDriveCommand(CLI::App& app, Args& a) {
+  auto* cmd = app.add_subcommand(
+      "drive", "drive one material point along a strain path at a constant rate (CSV)");
+  cmd->add_option("NAME", a.name, "library entry or catalog material")->required();
+  cmd->add_option("--path", a.path_name, "uniaxial-stress | uniaxial-strain | shear | confined")
+      ->check(CLI::IsMember(mat::drivePathNames()));
+  cmd->add_option("--rate", a.drive.rate, "driven strain rate (1/s, 1e-12 to 1e12; required)")
+      ->required(); // range checked by checkRate (the same rule as homogenize)
+  cmd->add_option("--to", a.drive.to,
+                  "final driven strain (required; confined: compression, below 1)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--unload", a.drive.unload, "drive back to zero strain at the same rate");
+  cmd->add_option("--steps", a.drive.steps, "time steps per leg (default 200)")
+      ->check(CLI::Range(1, 100000000));
+  cmd->add_option("--kinematics", a.kinematics,
+                  "finite (rotation-free frame, J = det F; default) | small")
+      ->check(CLI::IsMember({"finite", "small"}));
+  cmd->add_option("--out", a.out, "CSV file to write")->required();
+  cmd->add_option("--library", a.library, "library file (as before the subcommand)");
+  return cmd;
+}
+
+/// Declares every subcommand and option on @p app, into @p a.
+Commands addCommands(CLI::App& app, Args& a) {
+  app.require_subcommand(1);
+  app.add_option(
+      "--library", a.library,
+      "library file (default: $LAMINA_LIBRARY, else ~/.local/share/lamina/library.toml)");
+  app.add_option("--catalog", a.catalog, "catalog file (default: the source tree's)");
+  Commands c{};
+  c.list = app.add_subcommand("list", "list the library entries");
+  c.list->add_flag("--catalog-entries", a.list_catalog,
+                   "list the catalog's base materials instead");
+  c.show = app.add_subcommand("show", "show one entry");
+  c.show->add_option("NAME", a.name, "entry name")->required();
+  c.show->add_flag("--json", a.json, "print one JSON object");
+  c.add = app.add_subcommand("add", "add an entry from the catalog or from 21 constants");
+  c.add->add_option("NAME", a.name, "new entry name")->required();
+  auto* from = c.add->add_option("--from-catalog", a.from_catalog, "catalog key");
+  auto* constants = c.add->add_option(
+      "--constants", a.constants, "C11,C12,...,C66: upper triangle row by row, lamina order, Pa");
+  c.add->add_option("--density", a.density, "kg/m^3 (required with --constants)");
+  c.add->add_flag("--overwrite", a.overwrite, "replace an existing entry of that name");
+  from->excludes(constants);
+  c.layup = app.add_subcommand("layup", "store a layup of plies as a new entry");
+  c.layup->add_option("NAME", a.name, "new entry name")->required();
+  c.layup->add_option("--ply", a.plies, "MATERIAL:ANGLE_DEG:THICKNESS_M (repeat, bottom to top)")
+      ->required()
+      ->allow_extra_args(false); // one value per flag, so a positional may follow
+  c.layup->add_flag("--overwrite", a.overwrite, "replace an existing entry of that name");
+  c.export_card = app.add_subcommand("export", "print a card for another code");
+  c.export_card->add_option("NAME", a.name, "entry name")->required();
+  c.export_card
+      ->add_option("--format", a.format, "abaqus | calculix | lsdyna | lsdyna-small | json")
+      ->check(CLI::IsMember(formatNames()));
+  c.remove = app.add_subcommand("remove", "remove an entry");
+  c.remove->add_option("NAME", a.name, "entry name")->required();
+  c.drive = addDriveCommand(app, a);
+  return c;
+}
+
+/// `list`: the library's entries, or the catalog's materials.
+void listEntries(const Args& a, const std::filesystem::path& library) {
+  if (a.list_catalog) {
+    const mat::Catalog cat(a.catalogFile());
+    for (const auto& n : cat.names())
+      std::cout << n << "  " << cat.get(n).description << "\n";
+    return;
+  }
+  const mat::Library lib(library);
+  for (const auto& n : lib.names()) {
+    const auto& m = lib.get(n);
+    std::cout << n << "  " << m.kind << "  " << mat::toString(mat::classify(m.C).cls) << "\n";
+  }
+}
+
+/// `add`: the new entry, from the catalog or from 21 constants.
+mat::Material newEntry(const Args& a) {
+  mat::Material m;
+  if (!a.from_catalog.empty()) {
+    m = mat::Catalog(a.catalogFile()).get(a.from_catalog).toMaterial();
+    m.provenance.insert("catalog_key", a.from_catalog);
+  } else if (!a.constants.empty()) {
+    if (!(a.density > 0))
+      throw lamina::Error(a.density == 0 ? "--density (kg/m^3) is required with --constants"
+                                         : "density must be > 0 (kg/m^3)",
+                          {"--density", 0, ""});
+    m.C = mat::Stiffness::fromUpperTriangle(parseConstants(a.constants));
+    m.density = a.density;
+    m.kind = "constants";
+    m.provenance.insert("input", a.constants);
+  } else {
+    throw lamina::Error("give --from-catalog KEY or --constants C11,...,C66", {"add", 0, ""});
+  }
+  m.name = a.name;
+  m.provenance.insert("tool", "materials add");
+  m.provenance.insert("version", LAMINA_VERSION);
+  m.provenance.insert("time", nowIso());
+  return m;
+}
+
+/// `layup`: the plies stacked into a new entry of @p library.
+void addLayup(const Args& a, const std::filesystem::path& library) {
+  std::vector<mat::Ply> stack;
+  for (const auto& p : a.plies)
+    stack.push_back(mat::parsePly(p));
+  mat::MaterialSource source(library.string(), a.catalog);
+  mat::Material m =
+      mat::makeLayup(a.name, stack, [&](const std::string& n) { return source.get(n); });
+  m.provenance.insert("tool", "materials layup");
+  m.provenance.insert("version", LAMINA_VERSION);
+  m.provenance.insert("time", nowIso());
+  mat::Library(library).add(m, a.overwrite);
+  std::cerr << "added layup '" << a.name << "' (" << stack.size() << " plies, "
+            << lamina::core::formatShort(*m.thickness) << " m) to " << library.string() << "\n";
+}
+
+/// `drive`: the rate, the strain and the output checked before anything is
+/// computed, then the point driven and its CSV written.
+void driveEntry(Args a, const std::filesystem::path& library) {
+  a.drive.path = *mat::parseDrivePath(a.path_name);
+  a.drive.kinematics = a.kinematics == "small" ? mat::Kinematics::Small : mat::Kinematics::Finite;
+  mat::checkRate(a.drive.rate, "--rate");
+  mat::checkFinalStrain(a.drive.path, a.drive.to, "--to");
+  // never over a device, a FIFO, a directory, nor over the library or the catalog
+  lamina::core::checkOutput(a.out, {library, a.catalogFile()}, "--out");
+  mat::MaterialSource source(library.string(), a.catalog);
+  const mat::LawPtr law = source.law(a.name);
+  const std::vector<mat::DriveRow> rows = mat::drive(*law, a.drive);
+  mat::writeDriveCsv(a.out, rows);
+  std::cerr << "drove '" << a.name << "' (" << mat::toString(law->kind()) << ") along "
+            << a.path_name << " at " << a.drive.rate << " /s to " << a.drive.to << ": "
+            << rows.size() << " rows in " << a.out << "\n";
+}
+
+/// Runs the subcommand of @p c that was given.
+void runCommand(const Commands& c, const Args& a) {
+  const auto path = mat::Library::resolvePath(a.library);
+  if (c.list->parsed()) {
+    listEntries(a, path);
+  } else if (c.show->parsed()) {
+    const mat::Library lib(path);
+    if (a.json)
+      std::cout << mat::materialToJson(lib.get(a.name)).dump(2) << "\n";
+    else
+      printHuman(lib.get(a.name));
+  } else if (c.add->parsed()) {
+    mat::Library(path).add(newEntry(a), a.overwrite);
+    std::cerr << "added '" << a.name << "' to " << path.string() << "\n";
+  } else if (c.layup->parsed()) {
+    addLayup(a, path);
+  } else if (c.export_card->parsed()) {
+    const mat::Library lib(path);
+    std::cout << mat::exportCard(lib.get(a.name), mat::parseExportFormat(a.format));
+  } else if (c.drive->parsed()) {
+    driveEntry(a, path);
+  } else if (c.remove->parsed()) {
+    mat::Library(path).remove(a.name);
+    std::cerr << "removed '" << a.name << "' from " << path.string() << "\n";
+  }
+}
+
 } // namespace
 
 namespace lamina::materials {
@@ -132,74 +318,8 @@ namespace lamina::materials {
 int runProgram(int argc, char** argv, UnexpectedErrors unexpected) {
   CLI::App app{"lamina materials library: list, show, add, layup, export, remove.\n"
                "Stiffness in Pa, lamina order [xx, yy, zz, xy, yz, xz], engineering shear."};
-  app.require_subcommand(1);
-  std::string libraryPath, catalogPath;
-  app.add_option(
-      "--library", libraryPath,
-      "library file (default: $LAMINA_LIBRARY, else ~/.local/share/lamina/library.toml)");
-  app.add_option("--catalog", catalogPath, "catalog file (default: the source tree's)");
-
-  auto* list = app.add_subcommand("list", "list the library entries");
-  bool listCatalog = false;
-  list->add_flag("--catalog-entries", listCatalog, "list the catalog's base materials instead");
-
-  std::string name, format = "json", fromCatalog, constants;
-  bool json = false, overwrite = false;
-  double density = 0;
-  std::vector<std::string> plies;
-
-  auto* show = app.add_subcommand("show", "show one entry");
-  show->add_option("NAME", name, "entry name")->required();
-  show->add_flag("--json", json, "print one JSON object");
-
-  auto* add = app.add_subcommand("add", "add an entry from the catalog or from 21 constants");
-  add->add_option("NAME", name, "new entry name")->required();
-  auto* fromOpt = add->add_option("--from-catalog", fromCatalog, "catalog key");
-  auto* constOpt = add->add_option("--constants", constants,
-                                   "C11,C12,...,C66: upper triangle row by row, lamina order, Pa");
-  add->add_option("--density", density, "kg/m^3 (required with --constants)");
-  add->add_flag("--overwrite", overwrite, "replace an existing entry of that name");
-  fromOpt->excludes(constOpt);
-
-  auto* layup = app.add_subcommand("layup", "store a layup of plies as a new entry");
-  layup->add_option("NAME", name, "new entry name")->required();
-  layup->add_option("--ply", plies, "MATERIAL:ANGLE_DEG:THICKNESS_M (repeat, bottom to top)")
-      ->required()
-      ->allow_extra_args(false); // one value per flag, so a positional may follow
-  layup->add_flag("--overwrite", overwrite, "replace an existing entry of that name");
-
-  auto* exportCmd = app.add_subcommand("export", "print a card for another code");
-  exportCmd->add_option("NAME", name, "entry name")->required();
-  exportCmd->add_option("--format", format, "abaqus | calculix | lsdyna | lsdyna-small | json")
-      ->check(CLI::IsMember(formatNames()));
-
-  auto* remove = app.add_subcommand("remove", "remove an entry");
-  remove->add_option("NAME", name, "entry name")->required();
-
-  auto* driveCmd = app.add_subcommand(
-      "drive", "drive one material point along a strain path at a constant rate (CSV)");
-  std::string pathName = "uniaxial-strain", out, kinematics = "finite";
-  mat::DriveOptions drive;
-  driveCmd->add_option("NAME", name, "library entry or catalog material")->required();
-  driveCmd->add_option("--path", pathName, "uniaxial-stress | uniaxial-strain | shear | confined")
-      ->check(CLI::IsMember(mat::drivePathNames()));
-  driveCmd->add_option("--rate", drive.rate, "driven strain rate (1/s, 1e-12 to 1e12; required)")
-      ->required(); // range checked by checkRate (the same rule as homogenize)
-  driveCmd
-      ->add_option("--to", drive.to,
-                   "final driven strain (required; confined: compression, below 1)")
-      ->required()
-      ->check(CLI::PositiveNumber);
-  driveCmd->add_flag("--unload", drive.unload, "drive back to zero strain at the same rate");
-  driveCmd->add_option("--steps", drive.steps, "time steps per leg (default 200)")
-      ->check(CLI::Range(1, 100000000));
-  driveCmd
-      ->add_option("--kinematics", kinematics,
-                   "finite (rotation-free frame, J = det F; default) | small")
-      ->check(CLI::IsMember({"finite", "small"}));
-  driveCmd->add_option("--out", out, "CSV file to write")->required();
-  driveCmd->add_option("--library", libraryPath, "library file (as before the subcommand)");
-
+  Args args;
+  const Commands commands = addCommands(app, args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -209,109 +329,8 @@ int runProgram(int argc, char** argv, UnexpectedErrors unexpected) {
     std::cerr << "materials: error: " << e.what() << " (see --help)\n";
     return lamina::kExitUsage;
   }
-
   try {
-    const auto path = mat::Library::resolvePath(libraryPath);
-    auto catalog = [&] {
-      return mat::Catalog(catalogPath.empty() ? mat::Catalog::defaultPath()
-                                              : std::filesystem::path(catalogPath));
-    };
-    if (list->parsed()) {
-      if (listCatalog) {
-        const mat::Catalog cat = catalog();
-        for (const auto& n : cat.names())
-          std::cout << n << "  " << cat.get(n).description << "\n";
-        return 0;
-      }
-      const mat::Library lib(path);
-      for (const auto& n : lib.names()) {
-        const auto& m = lib.get(n);
-        std::cout << n << "  " << m.kind << "  " << mat::toString(mat::classify(m.C).cls) << "\n";
-      }
-      return 0;
-    }
-    if (show->parsed()) {
-      const mat::Library lib(path);
-      const auto& m = lib.get(name);
-      if (json)
-        std::cout << mat::materialToJson(m).dump(2) << "\n";
-      else
-        printHuman(m);
-      return 0;
-    }
-    if (add->parsed()) {
-      mat::Material m;
-      if (!fromCatalog.empty()) {
-        m = catalog().get(fromCatalog).toMaterial();
-        m.provenance.insert("catalog_key", fromCatalog);
-      } else if (!constants.empty()) {
-        if (!(density > 0))
-          throw lamina::Error(density == 0 ? "--density (kg/m^3) is required with --constants"
-                                           : "density must be > 0 (kg/m^3)",
-                              {"--density", 0, ""});
-        m.C = mat::Stiffness::fromUpperTriangle(parseConstants(constants));
-        m.density = density;
-        m.kind = "constants";
-        m.provenance.insert("input", constants);
-      } else {
-        throw lamina::Error("give --from-catalog KEY or --constants C11,...,C66", {"add", 0, ""});
-      }
-      m.name = name;
-      m.provenance.insert("tool", "materials add");
-      m.provenance.insert("version", LAMINA_VERSION);
-      m.provenance.insert("time", nowIso());
-      mat::Library lib(path);
-      lib.add(m, overwrite);
-      std::cerr << "added '" << name << "' to " << path.string() << "\n";
-      return 0;
-    }
-    if (layup->parsed()) {
-      std::vector<mat::Ply> stack;
-      for (const auto& p : plies)
-        stack.push_back(mat::parsePly(p));
-      mat::MaterialSource source(path.string(), catalogPath);
-      mat::Material m =
-          mat::makeLayup(name, stack, [&](const std::string& n) { return source.get(n); });
-      m.provenance.insert("tool", "materials layup");
-      m.provenance.insert("version", LAMINA_VERSION);
-      m.provenance.insert("time", nowIso());
-      mat::Library lib(path);
-      lib.add(m, overwrite);
-      std::cerr << "added layup '" << name << "' (" << stack.size() << " plies, "
-                << lamina::core::formatShort(*m.thickness) << " m) to " << path.string() << "\n";
-      return 0;
-    }
-    if (exportCmd->parsed()) {
-      const mat::Library lib(path);
-      std::cout << mat::exportCard(lib.get(name), mat::parseExportFormat(format));
-      return 0;
-    }
-    if (driveCmd->parsed()) {
-      drive.path = *mat::parseDrivePath(pathName);
-      drive.kinematics = kinematics == "small" ? mat::Kinematics::Small : mat::Kinematics::Finite;
-      mat::checkRate(drive.rate, "--rate");
-      mat::checkFinalStrain(drive.path, drive.to, "--to");
-      // before anything is computed: never over a device, a FIFO, a
-      // directory, nor over the library or the catalog
-      lamina::core::checkOutput(out,
-                                {path, catalogPath.empty() ? mat::Catalog::defaultPath()
-                                                           : std::filesystem::path(catalogPath)},
-                                "--out");
-      mat::MaterialSource source(path.string(), catalogPath);
-      const mat::LawPtr law = source.law(name);
-      const std::vector<mat::DriveRow> rows = mat::drive(*law, drive);
-      mat::writeDriveCsv(out, rows);
-      std::cerr << "drove '" << name << "' (" << mat::toString(law->kind()) << ") along "
-                << pathName << " at " << drive.rate << " /s to " << drive.to << ": " << rows.size()
-                << " rows in " << out << "\n";
-      return 0;
-    }
-    if (remove->parsed()) {
-      mat::Library lib(path);
-      lib.remove(name);
-      std::cerr << "removed '" << name << "' from " << path.string() << "\n";
-      return 0;
-    }
+    runCommand(commands, args);
   } catch (const lamina::Error& e) {
     std::cerr << "materials: error: " << e.what() << "\n";
     return lamina::kExitUserError;

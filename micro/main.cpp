@@ -21,6 +21,28 @@
 #include <iostream>
 #include <vector>
 
+namespace {
+
+/// Refuses @p out (and the .xdmf beside an .h5) when it is not a regular
+/// file or is one of the run's inputs: the cell file, the catalog, the image.
+void checkOutputs(const std::string& out, const lamina::micro::CellSpec& spec,
+                  const std::string& cell_path, const std::string& catalog) {
+  std::vector<std::filesystem::path> inputs{
+      cell_path,
+      catalog.empty() ? lamina::materials::Catalog::defaultPath() : std::filesystem::path(catalog)};
+  if (spec.image)
+    inputs.push_back(spec.image->path);
+  lamina::core::checkOutput(out, inputs, "--out");
+  lamina::micro::ImageFormat format = lamina::micro::ImageFormat::Hdf5;
+  if (lamina::micro::formatFromExtension(out, format) &&
+      format == lamina::micro::ImageFormat::Hdf5) {
+    std::filesystem::path xdmf = out;
+    lamina::core::checkOutput(xdmf.replace_extension(".xdmf"), inputs, "--out (its .xdmf)");
+  }
+}
+
+} // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"micro: build a voxel unit cell and write its phase map"};
   std::string cell_path, out, catalog;
@@ -44,19 +66,7 @@ int main(int argc, char** argv) {
   try {
     using namespace lamina::micro;
     const CellSpec spec = readCell(cell_path, lazyCatalog(catalog));
-    // before anything is built: the outputs replace only regular files, and
-    // none of the run's inputs
-    std::vector<std::filesystem::path> inputs{
-        cell_path, catalog.empty() ? lamina::materials::Catalog::defaultPath()
-                                   : std::filesystem::path(catalog)};
-    if (spec.image)
-      inputs.push_back(spec.image->path);
-    std::filesystem::path xdmf = out;
-    xdmf.replace_extension(".xdmf");
-    lamina::core::checkOutput(out, inputs, "--out");
-    ImageFormat out_format = ImageFormat::Hdf5;
-    if (formatFromExtension(out, out_format) && out_format == ImageFormat::Hdf5)
-      lamina::core::checkOutput(xdmf, inputs, "--out (its .xdmf)");
+    checkOutputs(out, spec, cell_path, catalog); // before anything is built
     std::array<int, 3> n = spec.resolution;
     if (resolution > 0)
       n = {resolution, resolution, resolution};
