@@ -224,8 +224,9 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_option("--tangent-strain", cli.tangent.strain,
                  "driven strain of the state of the tangent entries (default 0)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--tangent-increment", cli.tangent.increment,
-                 "strain increment a tangent is for: dt = increment / rate (default 1e-3)")
+  app.add_option(
+         "--tangent-increment", cli.tangent.increment,
+         "strain increment a tangent is for, in (0, 1]: dt = increment / rate (default 1e-3)")
       ->check(CLI::PositiveNumber);
 }
 

@@ -72,6 +72,16 @@ TEST_F(Arguments, ErrorsInsideTheSolverAndAbsurdRatesAreCleanErrors) {
     EXPECT_EQ(r.code, 1) << rates << ": " << r.output;
     EXPECT_NE(r.output.find("--tangent-rates"), std::string::npos) << rates << ": " << r.output;
   }
+  // the increment and the state of a tangent: a strain increment in (0, 1],
+  // a confined state below a compression of 1
+  r = run(homogenize() + " --name x --library " + at("l.toml") +
+          " --tangent-rates 1e5 --tangent-increment 2");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("--tangent-increment"), std::string::npos) << r.output;
+  r = run(homogenize() + " --name x --library " + at("l.toml") +
+          " --tangent-rates 1e5 --tangent-strain 1 --path confined");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.output.find("--tangent-strain"), std::string::npos) << r.output;
   r = run(bin("materials") + " drive polyurea-gvbo --rate 1e-320 --to 0.1 --out " + at("d.csv"));
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("--rate"), std::string::npos) << r.output;
