@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "core/hdf5_file.hpp"
 #include "core/input_file.hpp"
+#include "core/toml_reader.hpp"
 
 #include <cstdint>
 #include <cstdio>
