@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <sstream>
 
@@ -257,8 +258,8 @@ std::vector<unsigned char> unpack(const unsigned char* bytes, std::size_t avail,
     truncated(hs);
   if (d.compressor.empty()) {
     const std::uint64_t n = readHeader(bytes, d);
-    if (avail < hs + n)
-      truncated(hs + n);
+    if (n > avail - hs) // not hs + n: a 64-bit count would wrap
+      truncated(n < UINT64_MAX - hs ? hs + n : UINT64_MAX);
     return {bytes + hs, bytes + hs + n};
   }
   if (avail < 3 * hs)
@@ -282,8 +283,8 @@ std::vector<unsigned char> unpack(const unsigned char* bytes, std::size_t avail,
   std::size_t at = head, to = 0;
   for (std::uint64_t b = 0; b < blocks; ++b) {
     const std::uint64_t cs = readHeader(bytes + (3 + b) * hs, d);
-    if (avail < at + cs)
-      truncated(at + cs);
+    if (cs > avail - at)
+      truncated(cs < UINT64_MAX - at ? at + cs : UINT64_MAX);
     uLongf len = static_cast<uLongf>(b + 1 == blocks ? last : bs);
     if (uncompress(&out[to], &len, bytes + at, static_cast<uLong>(cs)) != Z_OK ||
         len != (b + 1 == blocks ? last : bs))

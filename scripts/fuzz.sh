@@ -39,13 +39,14 @@ seed cell cases/cells/*.toml fuzz/seeds/cell/*
 seed catalog materials/catalog.toml fuzz/seeds/catalog/*
 seed library fuzz/seeds/library/*
 seed msh fuzz/seeds/msh/*
+seed image fuzz/seeds/image/* # first byte: the format (image_fuzzer.cpp)
 mkdir -p "$corpus/msh"
 for geo in cases/meshes/*.geo; do # .msh seeds meshed from the .geo files
   out=$corpus/msh/$(basename "${geo%.geo}").msh
   [ -f "$out" ] || gmsh -2 -format msh41 "$geo" -o "$out" > /dev/null
 done
 status=0
-for target in ${FUZZ_TARGETS:-case cell catalog library msh}; do
+for target in ${FUZZ_TARGETS:-case cell catalog library msh image}; do
   runs=$(runs_of "$target")
   echo "fuzz: $target for ${SECONDS_EACH} s (seed $SEED, runs $runs)" >&2
   if ! "$BUILD/fuzz/${target}_fuzzer" "$corpus/$target" -max_total_time="$SECONDS_EACH" \

@@ -154,6 +154,23 @@ TEST(TruncatedImages, VtiCutAnywhereIsRefused) {
   }
 }
 
+// A VTI whose appended byte count is 2^64 - 1 (found by image_fuzzer: the
+// count plus its header wrapped to a small number and the copy ran past
+// the file) is refused as truncated, naming the image.
+TEST(TruncatedImages, VtiHugeByteCountIsTruncationNotOverflow) {
+  TempDir dir;
+  writeImage(pattern(), dir / "v.vti", ImageFormat::Vti);
+  std::string text = test::readFile(dir / "v.vti");
+  const std::size_t marker = text.find('_', text.find("<AppendedData"));
+  ASSERT_NE(marker, std::string::npos);
+  text.replace(marker + 1, 8, std::string(8, '\xff')); // the UInt64 byte count
+  test::writeFile(dir / "big.vti", text);
+  const std::string msg =
+      errorOf([&] { readImage(sourceOf(dir / "big.vti", ImageFormat::Vti)); });
+  EXPECT_NE(msg.find("truncated .vti file"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("big.vti"), std::string::npos) << msg;
+}
+
 // Raw: every cut is short of dimensions x type; dimensions whose byte count
 // overflows 64 bits are refused as needing more than the file, not wrapped.
 TEST(TruncatedImages, RawCutAndOverflowingDimensions) {
