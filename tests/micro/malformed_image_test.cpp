@@ -2,8 +2,9 @@
 /// @brief Image files that do not hold what their headers say, and image
 /// paths that are not files. A stack, array or dataset cut short is refused
 /// naming the image and what is missing, never read as a smaller image:
-/// every cut of a TIFF stack and of a VTI file either fails or (a cut in
-/// bytes no reader needs) gives the whole image back. FIFOs, directories,
+/// each cut tried of a TIFF stack and of a VTI file (every 2nd, every 3rd
+/// byte) either fails or (a cut in bytes no reader needs) gives the whole
+/// image back. FIFOs, directories,
 /// sockets and devices given as an image or a cell file are refused at once.
 
 #include "../core/test_util.hpp"
@@ -83,9 +84,10 @@ TEST(TruncatedImages, TiffStackCutAnywhereIsNeverFewerPages) {
   TempDir dir;
   const auto whole = dir / "stack.tif";
   writeImage(pattern(), whole, ImageFormat::Tiff);
-  const int refused = refusedCuts(dir, whole, ImageFormat::Tiff);
+  // every other cut (of about 1100 bytes; the stride halves the time)
+  const int refused = refusedCuts(dir, whole, ImageFormat::Tiff, 2);
   // all but a few bytes of padding past the last directory are needed
-  EXPECT_GE(refused, static_cast<int>(std::filesystem::file_size(whole)) - 8);
+  EXPECT_GE(refused, static_cast<int>(std::filesystem::file_size(whole)) / 2 - 4);
   cutCopy(whole, dir / "half.tif", std::filesystem::file_size(whole) / 2);
   const std::string msg =
       errorOf([&] { readImage(sourceOf(dir / "half.tif", ImageFormat::Tiff)); });
