@@ -96,11 +96,15 @@ TEST(TruncatedImages, TiffStackCutAnywhereIsNeverFewerPages) {
 }
 
 /// Writes a 5 x 4 x @p pages 8-bit stack through libtiff without a
-/// PageNumber tag (as many scanners and ImageJ do).
-void writePlainStack(const std::filesystem::path& path, int pages) {
+/// PageNumber tag (as many scanners and ImageJ do); page 0 carries the
+/// ImageDescription @p description when it is not empty.
+void writePlainStack(const std::filesystem::path& path, int pages,
+                     const std::string& description = "") {
   TIFF* t = TIFFOpen(path.c_str(), "w");
   ASSERT_NE(t, nullptr);
   for (int k = 0; k < pages; ++k) {
+    if (k == 0 && !description.empty())
+      TIFFSetField(t, TIFFTAG_IMAGEDESCRIPTION, description.c_str());
     TIFFSetField(t, TIFFTAG_IMAGEWIDTH, 5);
     TIFFSetField(t, TIFFTAG_IMAGELENGTH, 4);
     TIFFSetField(t, TIFFTAG_BITSPERSAMPLE, 8);
@@ -118,7 +122,8 @@ void writePlainStack(const std::filesystem::path& path, int pages) {
 
 // Without a declared page count, the directory chain itself tells a cut:
 // the last page read points to one the file does not hold. The cell's
-// `dimensions` is checked against the stack as well, by read and by probe.
+// `dimensions` is checked against the stack as well, by read and by probe,
+// and so is the count of ImageJ's description ("images=7" over 6 pages).
 TEST(TruncatedImages, TiffWithoutPageCountBrokenChainAndDeclaredDepth) {
   TempDir dir;
   writePlainStack(dir / "s.tif", 6);
@@ -142,6 +147,11 @@ TEST(TruncatedImages, TiffWithoutPageCountBrokenChainAndDeclaredDepth) {
         << msg;
     EXPECT_NE(msg.find("cell.dimensions"), std::string::npos) << msg;
   }
+  writePlainStack(dir / "ij.tif", 6, "ImageJ=1.54f\nimages=7\nslices=7\n");
+  const std::string msg = errorOf([&] { readImage(sourceOf(dir / "ij.tif", ImageFormat::Tiff)); });
+  EXPECT_NE(msg.find("declares 7 pages, the file holds 6"), std::string::npos) << msg;
+  writePlainStack(dir / "ij6.tif", 6, "ImageJ=1.54f\nimages=6\nslices=6\n");
+  EXPECT_EQ(readImage(sourceOf(dir / "ij6.tif", ImageFormat::Tiff)).n[2], 6);
 }
 
 // VTI (appended raw, zlib, as micro writes it): every third cut (the
