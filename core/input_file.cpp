@@ -36,17 +36,17 @@ InputFile::InputFile(const std::filesystem::path& path, const std::string& what,
     where_.file = path_.string();
   struct stat st {};
   if (::stat(path_.c_str(), &st) != 0)
-    fail(std::string("cannot open: ") + std::strerror(errno));
+    fail(std::string("cannot be opened: ") + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
     fail(std::string("is ") + kindOf(st.st_mode) + ", not a regular file; refusing to read it");
   do
     fd_ = ::open(path_.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
   while (fd_ < 0 && errno == EINTR);
   if (fd_ < 0)
-    fail(std::string("cannot open: ") + std::strerror(errno));
+    fail(std::string("cannot be opened: ") + std::strerror(errno));
   // the file opened may not be the one stat()ed: check what is open
   if (::fstat(fd_, &st) != 0)
-    fail(std::string("cannot read: ") + std::strerror(errno));
+    fail(std::string("cannot be read: ") + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
     fail(std::string("is ") + kindOf(st.st_mode) + ", not a regular file; refusing to read it");
   size_ = static_cast<std::uintmax_t>(st.st_size);
