@@ -3,6 +3,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/input_file.hpp"
 #include "core/names.hpp"
 #include "core/toml_reader.hpp"
 
@@ -287,12 +288,8 @@ void Library::reload() {
   entries_.clear();
   if (!std::filesystem::exists(path_))
     return;
-  std::ifstream in(path_, std::ios::binary);
-  if (!in)
-    throw Error("cannot read materials library", {path_.string(), 0, ""});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  entries_ = parse(ss.str(), path_.string());
+  entries_ = parse(core::readWholeFile(path_, core::kMaxTomlBytes, "materials library"),
+                   path_.string());
 }
 
 std::map<std::string, Material> Library::parse(const std::string& text, const std::string& source) {

@@ -112,6 +112,13 @@ void imageError(const ImageSource& src, const std::string& message) {
   throw Error(message + " (image " + src.path.string() + ")", {src.cell_file, 0, src.key});
 }
 
+core::InputFile openImage(const ImageSource& src) {
+  std::error_code ec;
+  if (!std::filesystem::exists(src.path, ec))
+    imageError(src, "image file not found");
+  return core::InputFile(src.path, "image", core::kMaxImageBytes, {src.cell_file, 0, src.key});
+}
+
 void checkImageMemory(const ImageSource& src, std::size_t voxels, std::size_t bytes_per_voxel) {
   // the file's bytes plus the int32 labels plus one reordered/cropped copy
   const double need = static_cast<double>(voxels) * static_cast<double>(bytes_per_voxel + 8);
@@ -288,9 +295,20 @@ VoxelImage downsampleImage(const VoxelImage& image, int f, const ImageSource& sr
 }
 
 namespace {
-VoxelImage readWhole(const ImageSource& src) {
-  if (!std::filesystem::exists(src.path))
-    detail::imageError(src, "image file not found");
+/// Refuses an image whose header gives other dimensions than the cell
+/// file's `dimensions` (when it states them).
+std::array<int, 3> checkDeclared(const std::array<int, 3>& n, const ImageSource& src) {
+  const auto& m = src.dimensions;
+  if (src.format != ImageFormat::Raw && m != std::array<int, 3>{0, 0, 0} && m != n)
+    throw Error("the image " + src.path.string() + " holds " + std::to_string(n[0]) + " x " +
+                    std::to_string(n[1]) + " x " + std::to_string(n[2]) + " voxels, the cell " +
+                    "declares " + std::to_string(m[0]) + " x " + std::to_string(m[1]) + " x " +
+                    std::to_string(m[2]) + " (truncated stack or wrong file?)",
+                {src.cell_file, 0, "cell.dimensions"});
+  return n;
+}
+
+VoxelImage readFormat(const ImageSource& src) {
   switch (src.format) {
   case ImageFormat::Hdf5:
     return detail::readHdf5Image(src);
@@ -304,20 +322,29 @@ VoxelImage readWhole(const ImageSource& src) {
   return {};
 }
 
-std::array<int, 3> probeWhole(const ImageSource& src) {
-  if (!std::filesystem::exists(src.path))
-    detail::imageError(src, "image file not found");
+VoxelImage readWhole(const ImageSource& src) {
+  VoxelImage img = readFormat(src);
+  checkDeclared(img.n, src);
+  return img;
+}
+
+std::array<int, 3> probeFormat(const ImageSource& src) {
   switch (src.format) {
   case ImageFormat::Hdf5:
     return detail::probeHdf5Image(src);
   case ImageFormat::Vti:
     return detail::probeVtiImage(src);
   case ImageFormat::Raw:
+    detail::openImage(src); // a regular file
     return src.dimensions;
   case ImageFormat::Tiff:
     return detail::probeTiffImage(src);
   }
   return {};
+}
+
+std::array<int, 3> probeWhole(const ImageSource& src) {
+  return checkDeclared(probeFormat(src), src);
 }
 } // namespace
 
