@@ -10,8 +10,8 @@ CMAKE_FLAGS ?=
 SAN_BUILD ?= build-sanitize
 FUZZ_BUILD ?= build-fuzz
 FUZZ_SECONDS ?= 60
-# the targets scripts/fuzz.sh runs (all six by default)
-FUZZ_TARGETS ?= case cell catalog library msh checkpoint
+# the targets scripts/fuzz.sh runs (all eight by default)
+FUZZ_TARGETS ?= case cell catalog library msh args image checkpoint
 # libFuzzer's -seed (0: its own pick, exploring) and the inputs per target
 # ("case=N cell=N ..."; empty: until FUZZ_SECONDS). CI fixes both so that its
 # run repeats one that passed here (.ci/run, docs/reliability.md).
@@ -59,7 +59,7 @@ fuzz: deps
 	CXX=clang++ CC=clang cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=Release \
 	  -DLAMINA_FUZZ=ON -DLAMINA_BUILD_TESTS=OFF -DLAMINA_MPI=OFF $(CMAKE_FLAGS)
 	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target case_fuzzer cell_fuzzer catalog_fuzzer \
-	  library_fuzzer msh_fuzzer checkpoint_fuzzer
+	  library_fuzzer msh_fuzzer args_fuzzer image_fuzzer checkpoint_fuzzer
 	$(SAN_ENV) FUZZ_TARGETS='$(FUZZ_TARGETS)' FUZZ_SEED='$(FUZZ_SEED)' FUZZ_RUNS='$(FUZZ_RUNS)' \
 	  bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS)
 

@@ -16,6 +16,21 @@ namespace {
   throw Error(what + ": " + std::strerror(errno), {p.string(), 0, ""});
 }
 
+/// @return what a file of mode @p mode is, for messages
+const char* fileKind(mode_t mode) {
+  if (S_ISDIR(mode))
+    return "a directory";
+  if (S_ISFIFO(mode))
+    return "a FIFO";
+  if (S_ISCHR(mode))
+    return "a character device";
+  if (S_ISBLK(mode))
+    return "a block device";
+  if (S_ISSOCK(mode))
+    return "a socket";
+  return "not a regular file";
+}
+
 void fsyncDirectory(const std::filesystem::path& file) {
   std::filesystem::path dir = file.parent_path();
   if (dir.empty())
@@ -50,8 +65,37 @@ std::string temporaryPrefix(const std::filesystem::path& path) {
   return path.filename().string() + ".tmp.";
 }
 
+void checkReplaceable(const std::filesystem::path& path, const std::string& option) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) // absent, or a link to nothing yet
+    return;
+  if (!S_ISREG(st.st_mode))
+    throw Error(std::string("refusing to write over ") + fileKind(st.st_mode) +
+                    ": an output replaces only a regular file",
+                {path.string(), 0, option});
+}
+
+void checkOutputIsNotInput(const std::filesystem::path& out,
+                           const std::vector<std::filesystem::path>& inputs,
+                           const std::string& option) {
+  for (const std::filesystem::path& in : inputs) {
+    std::error_code ec;
+    if (!in.empty() && std::filesystem::equivalent(out, in, ec) && !ec)
+      throw Error("the output is an input of the run (" + in.string() +
+                      "); refusing to overwrite it",
+                  {out.string(), 0, option});
+  }
+}
+
+void checkOutput(const std::filesystem::path& out, const std::vector<std::filesystem::path>& inputs,
+                 const std::string& option) {
+  checkReplaceable(out, option);
+  checkOutputIsNotInput(out, inputs, option);
+}
+
 void writeFileAtomically(const std::filesystem::path& link, const std::string& content) {
   const std::filesystem::path path = resolveLinks(link);
+  checkReplaceable(path);
   const std::filesystem::path dir = path.parent_path();
   if (!dir.empty())
     std::filesystem::create_directories(dir);
@@ -96,6 +140,13 @@ void writeFileAtomically(const std::filesystem::path& link, const std::string& c
 }
 
 void renameIntoPlace(const std::filesystem::path& from, const std::filesystem::path& to) {
+  try {
+    checkReplaceable(to);
+  } catch (const Error&) {
+    std::error_code ec;
+    std::filesystem::remove(from, ec);
+    throw;
+  }
   if (::rename(from.c_str(), to.c_str()) != 0) {
     std::error_code ec;
     std::filesystem::remove(from, ec);

@@ -47,6 +47,11 @@ public:
   using Error::Error;
 };
 
+/// What a program's command-line function does with an exception that is
+/// not a lamina::Error (a std::exception or anything else): Report it and
+/// exit 1 (the programs), or Rethrow it (the argument fuzzer: a finding).
+enum class UnexpectedErrors { Report, Rethrow };
+
 /// Exit codes shared by all lamina programs.
 enum ExitCode : int {
   kExitOk = 0,         ///< success

@@ -1,6 +1,7 @@
 #include "core/hdf5_file.hpp"
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 #include <exception>
 #include <limits>
@@ -30,8 +31,24 @@ struct SilenceHdf5 {
 const SilenceHdf5 silence_hdf5_stack_dumps; // errors are reported as lamina::Error
 } // namespace
 
+namespace {
+herr_t findTruncation(unsigned, const H5E_error2_t* e, void* out) {
+  if (e->desc && std::string(e->desc).find("truncated file") != std::string::npos)
+    *static_cast<std::string*>(out) = e->desc;
+  return 0;
+}
+} // namespace
+
+std::string hdf5TruncationReason() {
+  std::string reason;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, findTruncation, &reason);
+  return reason;
+}
+
 H5File::H5File(const std::filesystem::path& path, Mode mode) : path_(path) {
   hid_t id = -1;
+  if (mode != Mode::Create) // HDF5 would block on a FIFO and read a device
+    checkRegularInput(path, "HDF5 file", kMaxHdf5Bytes);
   switch (mode) {
   case Mode::Create:
     id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
@@ -43,8 +60,12 @@ H5File::H5File(const std::filesystem::path& path, Mode mode) : path_(path) {
     id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
     break;
   }
-  if (id < 0)
-    fail(mode == Mode::Create ? "cannot create HDF5 file" : "cannot open HDF5 file", "");
+  if (id < 0) {
+    const std::string reason = hdf5TruncationReason();
+    fail(std::string(mode == Mode::Create ? "cannot create HDF5 file" : "cannot open HDF5 file") +
+             (reason.empty() ? "" : " (" + reason + ")"),
+         "");
+  }
   file_ = H5Handle(id, H5Fclose);
 }
 

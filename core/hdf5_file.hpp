@@ -35,6 +35,11 @@ private:
   Closer closer_ = nullptr;
 };
 
+/// @return HDF5's own description of why the last call failed when it says
+/// the file is truncated ("truncated file: eof = ..., stored_eof = ..."),
+/// else "" (the rest of its error stack names internals, not the input).
+std::string hdf5TruncationReason();
+
 /// An HDF5 file opened for writing (created/truncated) or reading.
 class H5File {
 public:

@@ -1,8 +1,13 @@
 #pragma once
 /// @file parallel.hpp
 /// @brief Small helpers for hot loops: the static share of one OpenMP
-/// thread, and the attribute that compiles a leaf kernel for several vector
-/// widths.
+/// thread, the carrier that takes an exception out of a parallel region,
+/// and the attribute that compiles a leaf kernel for several vector widths.
+///
+/// An exception must not leave an OpenMP region (the runtime calls
+/// std::terminate): code inside a region that can throw (a law update, a
+/// validation, an allocation) runs through ParallelErrors::run, and the
+/// first exception is rethrown after the region.
 ///
 /// LAMINA_VECTOR_CLONES: the build targets baseline x86-64 (SSE2, no FMA),
 /// which runs anywhere; a function carrying this attribute is compiled three
@@ -14,6 +19,8 @@
 
 #include <omp.h>
 
+#include <atomic>
+#include <exception>
 #include <utility>
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
@@ -32,5 +39,51 @@ inline std::pair<int, int> threadRange(int n) {
   const long t = omp_get_thread_num(), nt = omp_get_num_threads();
   return {static_cast<int>(n * t / nt), static_cast<int>(n * (t + 1) / nt)};
 }
+
+/// The first exception thrown inside an OpenMP parallel region, carried out
+/// of it. Use:
+///
+///     core::ParallelErrors errors;
+///     #pragma omp parallel for
+///     for (...)
+///       errors.run([&] { ... });   // may throw
+///     errors.rethrow();            // after the region
+///
+/// Once one call has thrown, later calls skip their work (the region ends
+/// soon) but every thread still reaches the region's worksharing constructs
+/// and barriers, so a region with several of them stays well formed.
+class ParallelErrors {
+public:
+  /// Runs @p work unless an earlier call failed; keeps the first exception.
+  template <class Work>
+  void run(Work&& work) noexcept {
+    if (failed_.load(std::memory_order_relaxed))
+      return;
+    try {
+      work();
+    } catch (...) {
+      keep(std::current_exception());
+    }
+  }
+  /// @return whether a call of run() has thrown
+  bool failed() const { return failed_.load(std::memory_order_acquire); }
+  /// Rethrows the first exception caught, if any (call after the region).
+  void rethrow() const {
+    if (failed())
+      std::rethrow_exception(first_);
+  }
+
+private:
+  void keep(std::exception_ptr e) noexcept {
+#pragma omp critical(lamina_parallel_errors)
+    {
+      if (!first_)
+        first_ = std::move(e);
+      failed_.store(true, std::memory_order_release);
+    }
+  }
+  std::exception_ptr first_;
+  std::atomic<bool> failed_{false};
+};
 
 } // namespace lamina::core

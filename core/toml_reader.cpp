@@ -1,12 +1,10 @@
 #include "core/toml_reader.hpp"
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
-#include <sys/stat.h>
 
 namespace lamina::core {
 
@@ -173,21 +171,7 @@ void checkTomlLimits(std::string_view text, const std::string& source) {
 }
 
 std::string readInputFile(const std::filesystem::path& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0)
-    throw Error("cannot open file", {path.string(), 0, ""});
-  if (!S_ISREG(st.st_mode))
-    throw Error("not a regular file", {path.string(), 0, ""});
-  if (static_cast<std::uintmax_t>(st.st_size) > kMaxTomlBytes)
-    throw Error("file of " + std::to_string(st.st_size) + " bytes exceeds the input limit of " +
-                    std::to_string(kMaxTomlBytes) + " bytes",
-                {path.string(), 0, ""});
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw Error("cannot open file", {path.string(), 0, ""});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return readWholeFile(path, kMaxTomlBytes, "TOML file");
 }
 
 toml::table parseTomlFile(const std::filesystem::path& path) {

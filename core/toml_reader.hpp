@@ -39,7 +39,7 @@ void checkTomlLimits(std::string_view text, const std::string& source);
 
 /// @return the whole content of the input file @p path; throws lamina::Error
 /// naming the file when it cannot be opened, is not a regular file or is
-/// larger than kMaxTomlBytes (checked before reading).
+/// larger than kMaxTomlBytes (checked before reading; see input_file.hpp).
 std::string readInputFile(const std::filesystem::path& path);
 
 /// Parses a TOML file. Throws lamina::Error naming the file (and the line of

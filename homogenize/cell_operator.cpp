@@ -319,13 +319,17 @@ void CellOperator::applyImpl(const T* u, const std::array<double, 6>& E, T* f,
   // rolls two voxel planes of stress through its slab, recomputing the plane
   // below the slab: no barrier inside, 2 planes of memory per thread.
   const int slabs = nt == 1 ? 1 : std::min(n0, 4 * nt);
+  // per-thread scratch rows, allocated before the region (nothing in it throws)
+  std::vector<std::vector<T>> scratch_of(
+      static_cast<std::size_t>(nt),
+      std::vector<T>(2 * stencil::kXCombinations * stencil::rowLength(grid_)));
 #pragma omp parallel num_threads(nt)
   {
     const int t = omp_get_thread_num();
     double acc[6] = {0, 0, 0, 0, 0, 0};
     double my_energy = 0;
     double* en = energy ? &my_energy : nullptr;
-    std::vector<T> scratch(2 * stencil::kXCombinations * stencil::rowLength(grid_));
+    std::vector<T>& scratch = scratch_of[static_cast<std::size_t>(t)];
 #pragma omp for schedule(dynamic, 1) nowait
     for (int slab = 0; slab < slabs; ++slab) {
       const int begin = static_cast<int>(static_cast<long>(n0) * slab / slabs);

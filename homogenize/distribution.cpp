@@ -279,6 +279,8 @@ MpiSession::~MpiSession() {
 #ifdef LAMINA_WITH_MPI
   if (active_)
     MPI_Finalize();
+#else
+  (void)active_; // set only under MPI
 #endif
 }
 

@@ -2,6 +2,8 @@
 
 #include "homogenize/stencil.hpp"
 
+#include <omp.h>
+
 #include <vector>
 
 namespace lamina::homogenize {
@@ -11,9 +13,12 @@ FieldOperator::FieldOperator(const Grid& grid) : grid_(grid) {}
 void FieldOperator::strain(const double* u, const std::array<double, 6>& E, double* eps) const {
   const int n0 = grid_.n[0], n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t N = grid_.size(), L = stencil::rowLength(grid_);
+  // per-thread rows, allocated before the region (nothing in it throws)
+  std::vector<std::vector<double>> rows_of(static_cast<std::size_t>(omp_get_max_threads()),
+                                           std::vector<double>(9 * L));
 #pragma omp parallel
   {
-    std::vector<double> sums(9 * L);
+    std::vector<double>& sums = rows_of[static_cast<std::size_t>(omp_get_thread_num())];
 #pragma omp for schedule(static)
     for (int i = 0; i < n0; ++i) {
       const int i1 = i + 1 == n0 ? 0 : i + 1;
@@ -46,9 +51,11 @@ void FieldOperator::strain(const double* u, const std::array<double, 6>& E, doub
 void FieldOperator::divergence(const double* sigma, double* f) const {
   const int n0 = grid_.n[0], n1 = grid_.n[1], n2 = grid_.n[2];
   const std::size_t N = grid_.size(), L = stencil::rowLength(grid_);
+  std::vector<std::vector<double>> rows_of(static_cast<std::size_t>(omp_get_max_threads()),
+                                           std::vector<double>(9 * L));
 #pragma omp parallel
   {
-    std::vector<double> scratch(9 * L);
+    std::vector<double>& scratch = rows_of[static_cast<std::size_t>(omp_get_thread_num())];
 #pragma omp for schedule(static)
     for (int i = 0; i < n0; ++i) {
       const int im = i == 0 ? n0 - 1 : i - 1;

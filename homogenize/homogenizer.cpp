@@ -194,7 +194,7 @@ Homogenizer::Homogenizer(const Grid& grid, const Distribution& dist,
   for (long p = 0; p < phases; ++p) {
     try {
       C_[static_cast<std::size_t>(p)].validate("");
-    } catch (const Error&) {
+    } catch (...) { // thrown again below, outside the region
       bad = std::min(bad, p);
     }
   }
@@ -287,9 +287,12 @@ Result Homogenizer::run() {
   std::vector<std::size_t> count(C_.size(), 0);
   const long voxels = static_cast<long>(phase_.size());
   long bad = voxels;
+  // per-thread counts, allocated before the region (nothing in it throws)
+  std::vector<std::vector<std::size_t>> counts_of(static_cast<std::size_t>(omp_get_max_threads()),
+                                                  std::vector<std::size_t>(C_.size(), 0));
 #pragma omp parallel
   {
-    std::vector<std::size_t> mine(C_.size(), 0);
+    std::vector<std::size_t>& mine = counts_of[static_cast<std::size_t>(omp_get_thread_num())];
 #pragma omp for schedule(static) reduction(min : bad)
     for (long v = 0; v < voxels; ++v) {
       const std::int32_t p = phase_[static_cast<std::size_t>(v)];

@@ -5,6 +5,7 @@
 #include "micro/phase_map_io.hpp"
 
 #include "core/error.hpp"
+#include "core/names.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -183,34 +184,40 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
   bool sweep = false;
   for (const auto& ph : spec.phases)
     sweep = sweep || ph.J.size() > 1;
+  // every name checked before anything is computed: the entries of a sweep
+  // are added all or none
+  std::vector<std::string> entry_names;
   for (double J : states) {
-    const std::string name = entryName(base, J, sweep);
-    if (library.contains(name) && !overwrite)
-      throw Error("entry '" + name + "' exists in " + library.path().string() +
-                  " (use --overwrite or another --name)");
+    entry_names.push_back(entryName(base, J, sweep));
+    core::checkName(entry_names.back(), "entry name", {"", 0, "--name"});
   }
+  library.checkNewNames(entry_names, overwrite, "--name");
   std::vector<EntryResult> out;
-  for (double J : states) {
-    EntryResult e = homogenizeCell(spec, cell, entryName(base, J, sweep), J, options, &d);
-    if (d.rank() != 0) { // one writer
-      out.push_back(std::move(e));
-      continue;
-    }
-    materials::Material m = makeEntry(e.name, spec, cell, e.result, options, J,
-                                      e.dispersion ? &*e.dispersion : nullptr);
-    // The phase map goes to an HDF5 side file beside the library (DESIGN.md:
-    // large arrays never enter the text file), written in the same
-    // transaction as the entry that names it: an entry never points at a
-    // missing file and a failed add leaves no side file behind.
-    std::vector<std::string> names;
-    for (const auto& ph : spec.phases)
-      names.push_back(ph.name);
-    library.add(std::move(m), overwrite,
-                [&](const std::filesystem::path& h5) { micro::writePhaseMap(cell, names, h5); });
-    if (report)
-      report(e);
+  std::vector<materials::Library::Addition> additions;
+  std::vector<std::string> phase_names;
+  for (const auto& ph : spec.phases)
+    phase_names.push_back(ph.name);
+  for (std::size_t s = 0; s < states.size(); ++s) {
+    const double J = states[s];
+    EntryResult e = homogenizeCell(spec, cell, entry_names[s], J, options, &d);
+    if (d.rank() == 0) // one writer
+      // The phase map goes to an HDF5 side file beside the library (DESIGN.md:
+      // large arrays never enter the text file), written in the same
+      // transaction as the entry that names it: an entry never points at a
+      // missing file and a failed add leaves no side file behind.
+      additions.push_back({makeEntry(e.name, spec, cell, e.result, options, J,
+                                     e.dispersion ? &*e.dispersion : nullptr),
+                           [&cell, &phase_names](const std::filesystem::path& h5) {
+                             micro::writePhaseMap(cell, phase_names, h5);
+                           }});
     out.push_back(std::move(e));
   }
+  if (d.rank() != 0)
+    return out;
+  library.add(std::move(additions), overwrite); // all entries in one transaction
+  if (report)
+    for (const EntryResult& e : out)
+      report(e);
   return out;
 }
 

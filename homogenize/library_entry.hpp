@@ -56,8 +56,10 @@ EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& c
                            const Distribution* dist = nullptr);
 
 /// Homogenizes @p cell at every J state of @p spec (entryName rule) and adds
-/// each entry to @p library. Checks all names first: an existing entry is an
-/// error unless @p overwrite. @p report, if set, is called after each entry.
+/// the entries to @p library in one transaction (all or none). Checks all
+/// names before computing: an invalid name, two states whose names collide
+/// and an existing entry (unless @p overwrite) are errors. @p report, if
+/// set, is called for each entry once all are committed.
 /// Distributed (@p dist): every rank calls this; rank 0 holds the cell's
 /// whole phase map and scatters it, and alone writes the side files and the
 /// library and calls @p report.

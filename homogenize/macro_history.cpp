@@ -15,8 +15,8 @@ int MacroHistory::stressComponents() const {
 
 MacroHistory pathHistory(materials::DrivePath path, double rate, double to, int steps,
                          bool unload) {
-  LAMINA_CHECK(rate > 0 && std::isfinite(rate), "rate must be positive, got ", rate);
-  LAMINA_CHECK(to > 0 && std::isfinite(to), "final strain must be positive, got ", to);
+  materials::checkRate(rate, "rate");
+  materials::checkFinalStrain(path, to, "final strain");
   LAMINA_CHECK(steps >= 1, "at least one step is needed");
   MacroHistory h;
   int driven = 0;

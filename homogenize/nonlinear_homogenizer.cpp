@@ -1,6 +1,7 @@
 #include "homogenize/nonlinear_homogenizer.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "homogenize/fft.hpp"
 #include "homogenize/field_operator.hpp"
 #include "homogenize/green_operator.hpp"
@@ -121,40 +122,43 @@ struct NonlinearHomogenizer::Impl {
   /// committed state; returns the average stress.
   Vector6 evaluate(double dt, bool with_tangent) {
     Vector6 total = Vector6::Zero();
+    core::ParallelErrors errors; // a law refusing a state throws
 #pragma omp parallel
     {
       Vector6 acc = Vector6::Zero();
 #pragma omp for schedule(dynamic, 4096)
-      for (std::size_t v = 0; v < N; ++v) {
-        Vector6 e, s;
-        for (int a = 0; a < 6; ++a)
-          e[a] = eps[a * N + v];
-        const std::int64_t k = slot[v];
-        if (k < 0) {
-          s = phaseC(v) * e;
-        } else {
-          materials::PointStep step;
+      for (std::size_t v = 0; v < N; ++v)
+        errors.run([&] {
+          Vector6 e, s;
           for (int a = 0; a < 6; ++a)
-            step.eps_n[a] = eps_n[a * N + v];
-          step.eps = e;
-          step.J_n = 1 + step.eps_n.head<3>().sum();
-          step.J = 1 + e.head<3>().sum();
-          step.dt = dt;
-          Matrix6 T;
-          laws[static_cast<std::size_t>(phase[v])]->update(
-              step, &state_n[k * stride], &state[k * stride], s, with_tangent ? &T : nullptr);
-          if (with_tangent) {
-            Eigen::Map<Matrix6> Tv(&tangent[static_cast<std::size_t>(k) * 36]);
-            Tv = 0.5 * (T + T.transpose());
+            e[a] = eps[a * N + v];
+          const std::int64_t k = slot[v];
+          if (k < 0) {
+            s = phaseC(v) * e;
+          } else {
+            materials::PointStep step;
+            for (int a = 0; a < 6; ++a)
+              step.eps_n[a] = eps_n[a * N + v];
+            step.eps = e;
+            step.J_n = 1 + step.eps_n.head<3>().sum();
+            step.J = 1 + e.head<3>().sum();
+            step.dt = dt;
+            Matrix6 T;
+            laws[static_cast<std::size_t>(phase[v])]->update(
+                step, &state_n[k * stride], &state[k * stride], s, with_tangent ? &T : nullptr);
+            if (with_tangent) {
+              Eigen::Map<Matrix6> Tv(&tangent[static_cast<std::size_t>(k) * 36]);
+              Tv = 0.5 * (T + T.transpose());
+            }
           }
-        }
-        for (int a = 0; a < 6; ++a)
-          sig[a * N + v] = s[a];
-        acc += s;
-      }
+          for (int a = 0; a < 6; ++a)
+            sig[a * N + v] = s[a];
+          acc += s;
+        });
 #pragma omp critical(lamina_nonlinear_evaluate)
       total += acc;
     }
+    errors.rethrow();
     return total / static_cast<double>(N);
   }
 

@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/hdf5_file.hpp"
+#include "core/names.hpp"
 #include "homogenize/library_entry.hpp"
 
 #include <algorithm>
@@ -90,6 +91,17 @@ std::vector<materials::LawPtr> phaseLaws(const micro::CellSpec& spec) {
   return laws;
 }
 
+std::vector<std::filesystem::path> pathOutputs(const std::filesystem::path& out, bool fields) {
+  if (out.empty())
+    return {};
+  std::vector<std::filesystem::path> files{out, beside(out, "-phases.csv")};
+  if (fields) {
+    files.push_back(beside(out, "-fields.h5"));
+    files.push_back(beside(out, "-fields.xdmf"));
+  }
+  return files;
+}
+
 std::vector<StepResult> runPath(const micro::CellSpec& spec, const micro::UnitCell& cell,
                                 const PathSpec& path, const NonlinearOptions& options,
                                 const std::filesystem::path& out,
@@ -99,13 +111,25 @@ std::vector<StepResult> runPath(const micro::CellSpec& spec, const micro::UnitCe
   for (int s : field_steps)
     LAMINA_CHECK(s >= 1 && static_cast<std::size_t>(s) <= history.steps.size(), "field step ", s,
                  " is outside the history (1..", history.steps.size(), ")");
+  for (const std::filesystem::path& f : pathOutputs(out, !field_steps.empty()))
+    core::checkReplaceable(f, "--out"); // before the run, not after it
   NonlinearHomogenizer h(gridOf(cell), cell.phase, phaseLaws(spec), options);
   std::unique_ptr<core::H5File> fields;
   const std::filesystem::path h5 = beside(out, "-fields.h5");
+  // the fields are written aside and renamed into place with the CSVs: a
+  // failed run replaces nothing
+  const std::filesystem::path h5_tmp = h5.string() + ".tmp";
+  struct RemoveAside {
+    const std::filesystem::path& file;
+    ~RemoveAside() {
+      std::error_code ec;
+      std::filesystem::remove(file, ec);
+    }
+  } remove_aside{h5_tmp};
   std::vector<std::pair<int, double>> written;
   if (!field_steps.empty()) {
     LAMINA_CHECK(!out.empty(), "fields need an output file (--out)");
-    fields = std::make_unique<core::H5File>(h5, core::H5File::Mode::Create);
+    fields = std::make_unique<core::H5File>(h5_tmp, core::H5File::Mode::Create);
   }
   auto each = [&](const StepResult& r) {
     if (fields && std::find(field_steps.begin(), field_steps.end(), r.step) != field_steps.end()) {
@@ -137,6 +161,7 @@ std::vector<StepResult> runPath(const micro::CellSpec& spec, const micro::UnitCe
   core::writeFileAtomically(beside(out, "-phases.csv"), phases);
   if (fields) {
     fields.reset();
+    core::renameIntoPlace(h5_tmp, h5);
     core::writeFileAtomically(beside(out, "-fields.xdmf"),
                               fieldsXdmf(h5.filename().string(), gridOf(cell), written));
   }
@@ -149,27 +174,41 @@ std::string rateEntryName(const std::string& base, double rate) {
   return base + "-R" + buf;
 }
 
+std::vector<std::string> checkTangentSpec(const std::string& base, const TangentSpec& tangent,
+                                          const materials::Library& library, bool overwrite) {
+  if (tangent.rates.empty())
+    throw Error("no rate given for the tangent entries", {"", 0, "--tangent-rates"});
+  if (!(tangent.increment > 0 && tangent.increment <= 1)) // a strain increment
+    throw Error("the tangent increment must be a strain in (0, 1]",
+                {"", 0, "--tangent-increment"});
+  if (tangent.strain > 0)
+    materials::checkFinalStrain(tangent.path.path, tangent.strain, "--tangent-strain");
+  else if (!(tangent.strain == 0))
+    throw Error("the tangent strain must not be negative", {"", 0, "--tangent-strain"});
+  std::vector<std::string> names;
+  for (double rate : tangent.rates) {
+    materials::checkRate(rate, "--tangent-rates", true);
+    if (tangent.strain > 0 && !std::isfinite(rate))
+      throw Error("an infinite rate reaches no strain: use --tangent-strain 0",
+                  {"", 0, "--tangent-rates"});
+    names.push_back(rateEntryName(base, rate));
+    core::checkName(names.back(), "entry name", {"", 0, "--name"});
+  }
+  library.checkNewNames(names, overwrite, "--tangent-rates");
+  return names;
+}
+
 void addTangentEntries(const micro::CellSpec& spec, const micro::UnitCell& cell,
                        const std::string& base, const TangentSpec& tangent,
                        const NonlinearOptions& options, materials::Library& library, bool overwrite,
                        const std::function<void(const materials::Material&)>& report) {
-  LAMINA_CHECK(!tangent.rates.empty(), "no rate given for the tangent entries");
-  LAMINA_CHECK(tangent.increment > 0, "the tangent increment must be positive");
-  LAMINA_CHECK(tangent.strain >= 0, "the tangent strain must not be negative");
-  for (double rate : tangent.rates) {
-    LAMINA_CHECK(rate > 0, "rates must be positive (inf: instantaneous), got ", rate);
-    const std::string name = rateEntryName(base, rate);
-    if (library.contains(name) && !overwrite)
-      throw Error("entry '" + name + "' exists in " + library.path().string() +
-                  " (use --overwrite or another --name)");
-  }
+  checkTangentSpec(base, tangent, library, overwrite); // before anything is computed
+  std::vector<materials::Library::Addition> additions;
   for (double rate : tangent.rates) {
     const auto t0 = std::chrono::steady_clock::now();
     NonlinearHomogenizer h(gridOf(cell), cell.phase, phaseLaws(spec), options);
     int newton = 0, krylov = 0;
     if (tangent.strain > 0) {
-      LAMINA_CHECK(std::isfinite(rate),
-                   "an infinite rate reaches no strain: use --tangent-strain 0");
       const MacroHistory hist =
           pathHistory(tangent.path.path, rate, tangent.strain, tangent.path.steps, false);
       for (const StepResult& r : h.run(hist)) {
@@ -207,10 +246,12 @@ void addTangentEntries(const micro::CellSpec& spec, const micro::UnitCell& cell,
     p.insert("asymmetry_before_symmetrizing", raw.asymmetry());
     p.insert("wall_s",
              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    library.add(m, overwrite);
-    if (report)
-      report(m);
+    additions.push_back({std::move(m), {}});
   }
+  library.add(additions, overwrite); // all entries in one transaction
+  if (report)
+    for (const auto& a : additions)
+      report(a.material);
 }
 
 } // namespace lamina::homogenize

@@ -29,6 +29,10 @@ struct PathSpec {
 /// @return the law of every phase of @p spec (Phase::model)
 std::vector<materials::LawPtr> phaseLaws(const micro::CellSpec& spec);
 
+/// @return the files runPath() writes for @p out (none when empty): @p out,
+/// OUT_STEM-phases.csv and, with @p fields, OUT_STEM-fields.h5 and .xdmf
+std::vector<std::filesystem::path> pathOutputs(const std::filesystem::path& out, bool fields);
+
 /// Runs @p path on @p cell. Writes, if @p out is not empty: @p out (the
 /// header of `materials drive` plus newton,krylov,residual,wall_s; one row
 /// per step with t = 0 first) and OUT_STEM-phases.csv (t,phase and the
@@ -54,12 +58,21 @@ struct TangentSpec {
 /// "pu-R1e+06", "pu-Rinf").
 std::string rateEntryName(const std::string& base, double rate);
 
+/// Checks @p tangent and the entry names of its rates before anything is
+/// computed: every rate in [kMinRate, kMaxRate] or inf (finite with a
+/// strain), the strain and increment, valid names that do not collide with
+/// each other nor (unless @p overwrite) with entries of @p library. Throws
+/// lamina::Error naming the argument. @return the entry names, one per rate.
+std::vector<std::string> checkTangentSpec(const std::string& base, const TangentSpec& tangent,
+                                          const materials::Library& library, bool overwrite);
+
 /// For every rate: drives the cell along the path at that rate to the
 /// strain, takes the effective consistent tangent of an increment over
 /// dt = increment / rate (NonlinearHomogenizer::effectiveTangent), and adds
 /// it to @p library as a "homogenized" entry with its provenance (rate,
-/// strain, path, increment, dt, the cell and the solver). Names are checked
-/// first; existing ones are an error unless @p overwrite.
+/// strain, path, increment, dt, the cell and the solver). checkTangentSpec
+/// runs first; the entries are added in one transaction (all or none) once
+/// all are computed, then @p report is called for each.
 void addTangentEntries(const micro::CellSpec& spec, const micro::UnitCell& cell,
                        const std::string& base, const TangentSpec& tangent,
                        const NonlinearOptions& options, materials::Library& library, bool overwrite,

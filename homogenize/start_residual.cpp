@@ -67,11 +67,17 @@ void StartResidual::apply(const std::array<double, 6>& E, V* b,
   const std::size_t un2 = static_cast<std::size_t>(n2);
   const int nt = std::max(1, std::min(omp_get_max_threads(), n0));
   std::vector<std::array<double, 6>> partial(static_cast<std::size_t>(nt));
+  // stress rows of the voxels below and above a node plane (6 x n2 each),
+  // the x-combinations of two voxel rows and one node row of forces, and the
+  // phase of each uniform voxel column (-1 if not): per thread, allocated
+  // before the region (nothing in it throws)
+  std::vector<std::vector<double>> scratch_of(static_cast<std::size_t>(nt),
+                                              std::vector<double>(12 * un2 + 2 * block + 3 * un2));
+  std::vector<std::vector<std::int32_t>> column_of(static_cast<std::size_t>(nt),
+                                                   std::vector<std::int32_t>(un2));
 #pragma omp parallel num_threads(nt)
   {
-    // stress rows of the voxels below and above a node plane (6 x n2 each),
-    // the x-combinations of two voxel rows and one node row of forces
-    std::vector<double> scratch(12 * un2 + 2 * block + 3 * un2);
+    std::vector<double>& scratch = scratch_of[static_cast<std::size_t>(omp_get_thread_num())];
     double* S = scratch.data();
     double* cj = S + 12 * un2;
     double* cm = cj + block;
@@ -103,7 +109,7 @@ void StartResidual::apply(const std::array<double, 6>& E, V* b,
                  ? phase_lo_.data() + r * un2
                  : phase_.data() + (r - static_cast<std::size_t>(n1)) * un2;
     };
-    std::vector<std::int32_t> column(un2); // phase of a uniform voxel column, else -1
+    std::vector<std::int32_t>& column = column_of[static_cast<std::size_t>(omp_get_thread_num())];
     double acc[6] = {0, 0, 0, 0, 0, 0};
 #pragma omp for schedule(static)
     for (int i = 0; i < n0; ++i) {

@@ -3,12 +3,16 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/input_file.hpp"
 #include "core/names.hpp"
 #include "core/toml_reader.hpp"
+
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -125,6 +129,23 @@ void writeMatrix6(std::ostream& os, const char* k, const Matrix6& c) {
   os << "]\n";
 }
 
+/// Permission bits of side files and of the side folder.
+struct FileModes {
+  mode_t file = 0644;   ///< a side file's: those of the library
+  mode_t folder = 0755; ///< the side folder's at most: the library's, x where r
+};
+
+/// @return the modes of the side files of the library at @p library (a new
+/// library is written 0644, see core::writeFileAtomically)
+FileModes sideModes(const std::filesystem::path& library) {
+  struct stat st {};
+  FileModes m;
+  if (::stat(library.c_str(), &st) == 0)
+    m.file = st.st_mode & 0666;
+  m.folder = m.file | ((m.file & 0444) >> 2); // r -> r-x
+  return m;
+}
+
 /// The side files of one transaction: written into a fresh stage folder
 /// inside the side folder, under names unique to the transaction (the
 /// stage's random suffix), then renamed into the side folder. Nothing is
@@ -136,7 +157,8 @@ public:
   /// Names of stage folders start with this ("<stem>.side/.stage.XXXXXX").
   static constexpr const char* kStagePrefix = ".stage.";
 
-  explicit SideFiles(std::filesystem::path folder) : folder_(std::move(folder)) {}
+  SideFiles(std::filesystem::path folder, FileModes modes)
+      : folder_(std::move(folder)), modes_(modes) {}
   ~SideFiles() {
     std::error_code ec;
     if (!stage_.empty())
@@ -149,6 +171,9 @@ public:
   /// its files are to be named with.
   std::string open(const std::string& name) {
     std::filesystem::create_directories(folder_);
+    struct stat st {};
+    if (::stat(folder_.c_str(), &st) == 0 && (st.st_mode & 07777 & ~modes_.folder) != 0)
+      ::chmod(folder_.c_str(), st.st_mode & 07777 & modes_.folder); // no more open than the library
     std::string tmpl = (folder_ / (std::string(kStagePrefix) + "XXXXXX")).string();
     if (!::mkdtemp(tmpl.data()))
       throw Error("cannot create a temporary folder for side files", {folder_.string(), 0, ""});
@@ -165,6 +190,8 @@ public:
       if (e.is_regular_file())
         files.push_back(e.path());
     for (const auto& f : files) {
+      if (::chmod(f.c_str(), modes_.file) != 0)
+        throw Error("cannot set the permissions of a side file", {f.string(), 0, ""});
       const std::filesystem::path to = folder_ / f.filename();
       core::renameIntoPlace(f, to);
       placed_.push_back(to);
@@ -181,6 +208,7 @@ public:
 
 private:
   std::filesystem::path folder_, stage_;
+  FileModes modes_;
   std::vector<std::filesystem::path> placed_;
 };
 
@@ -260,12 +288,8 @@ void Library::reload() {
   entries_.clear();
   if (!std::filesystem::exists(path_))
     return;
-  std::ifstream in(path_, std::ios::binary);
-  if (!in)
-    throw Error("cannot read materials library", {path_.string(), 0, ""});
-  std::stringstream ss;
-  ss << in.rdbuf();
-  entries_ = parse(ss.str(), path_.string());
+  entries_ = parse(core::readWholeFile(path_, core::kMaxTomlBytes, "materials library"),
+                   path_.string());
 }
 
 std::map<std::string, Material> Library::parse(const std::string& text, const std::string& source) {
@@ -359,33 +383,61 @@ void Library::add(const Material& m, bool overwrite) {
 }
 
 void Library::add(Material m, bool overwrite, const SideFileWriter& write_side) {
-  validate(m);
+  std::vector<Addition> one;
+  one.push_back({std::move(m), write_side});
+  add(std::move(one), overwrite);
+}
+
+void Library::checkNewNames(const std::vector<std::string>& names, bool overwrite,
+                            const std::string& option) const {
+  std::set<std::string> seen;
+  for (const std::string& name : names) {
+    if (!seen.insert(name).second)
+      throw Error("two of the entries to add are named '" + name +
+                      "' (nothing was added; choose values that print differently)",
+                  {"", 0, option});
+    if (!overwrite && contains(name))
+      throw Error("entry '" + name + "' is already in library " + path_.string() +
+                      " (use --overwrite or another name; nothing was added)",
+                  {"", 0, option});
+  }
+}
+
+void Library::add(std::vector<Addition> additions, bool overwrite) {
+  std::vector<std::string> names;
+  for (const Addition& a : additions) {
+    validate(a.material);
+    names.push_back(a.material.name);
+  }
   const core::FileLock lock(path_);
   reload(); // another process may have added entries since we loaded
-  if (!overwrite && contains(m.name))
-    throw Error("material already in library " + path_.string() +
-                    " (remove it first or choose another name)",
-                {"", 0, m.name});
+  checkNewNames(names, overwrite, "");
   sweep();
-  SideFiles side(folder() / sideFolder());
+  const FileModes modes = sideModes(path_);
+  std::vector<std::unique_ptr<SideFiles>> sides;
   try {
-    if (write_side) {
-      const std::string stem = side.open(m.name);
-      m.side_file = (sideFolder() / (stem + ".h5")).string();
-      write_side(side.stage() / (stem + ".h5"));
-      side.place();
-    }
     auto updated = entries_;
-    updated[m.name] = m;
+    for (Addition& a : additions) {
+      Material& m = a.material;
+      if (a.write_side) {
+        sides.push_back(std::make_unique<SideFiles>(folder() / sideFolder(), modes));
+        const std::string stem = sides.back()->open(m.name);
+        m.side_file = (sideFolder() / (stem + ".h5")).string();
+        a.write_side(sides.back()->stage() / (stem + ".h5"));
+        sides.back()->place();
+      }
+      updated[m.name] = m;
+    }
     const std::string text = serialize(updated);
     parse(text, path_.string() + " (about to be written)"); // never write what we cannot read back
     core::writeFileAtomically(path_, text);                 // the commit point
     entries_ = std::move(updated);
   } catch (...) {
-    side.rollBack();
+    for (auto& side : sides)
+      side->rollBack();
     throw;
   }
-  sweep(); // the side files of the entry just replaced
+  sweep(); // the side files of the entries just replaced
 }
 
 void Library::remove(const std::string& name) {

@@ -15,7 +15,10 @@
 /// Side files are part of the same transaction (add with a SideFileWriter),
 /// and each write, under the lock, removes what interrupted writers left
 /// (temporaries, side files no entry names). A library that is a symlink
-/// stays one (the file it points to is written) and keeps its permissions.
+/// stays one (the file it points to is written) and keeps its permissions;
+/// side files take the library's permission bits, and the side folder is
+/// never more permissive than the library (x added where r is set). A
+/// command adding several entries adds them in one transaction: all or none.
 /// Reading validates strictly: a file that is not a lamina library, an
 /// unknown key, a malformed or non-positive-definite entry is an error naming
 /// the file, the line and the key.
@@ -74,6 +77,26 @@ public:
   /// On any failure the new files are removed and the library is unchanged;
   /// after the commit the files of a replaced entry are removed.
   void add(Material m, bool overwrite, const SideFileWriter& write_side);
+
+  /// One entry of a transaction: the material and, if it has one, the
+  /// writer of its side file.
+  struct Addition {
+    Material material;         ///< the entry (validated by add)
+    SideFileWriter write_side; ///< its side file, or empty for none
+  };
+
+  /// Adds every entry of @p additions in one transaction under the lock
+  /// (as the single add above): all entries land or none does. Names that
+  /// repeat within @p additions are an error, and so is a name already in
+  /// the library unless @p overwrite, before anything is written.
+  void add(std::vector<Addition> additions, bool overwrite);
+
+  /// Throws lamina::Error when two of @p names are equal or (unless
+  /// @p overwrite) one is already in the library (as loaded; add() checks
+  /// again under the lock). @p option names the argument in the message
+  /// (e.g. "--name").
+  void checkNewNames(const std::vector<std::string>& names, bool overwrite,
+                     const std::string& option) const;
   /// Removes entry @p name and writes the file; error if absent.
   void remove(const std::string& name);
 

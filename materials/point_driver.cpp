@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -114,12 +115,29 @@ std::vector<std::string> drivePathNames() {
   return names;
 }
 
+void checkRate(double rate, const std::string& option, bool allow_infinite) {
+  if (allow_infinite && rate == std::numeric_limits<double>::infinity())
+    return;
+  if (!(rate >= kMinRate && rate <= kMaxRate))
+    throw Error(detail::concat("strain rate ", rate, " /s is outside [", kMinRate, ", ", kMaxRate,
+                               "] /s", allow_infinite ? " (or inf)" : ""),
+                {"", 0, option});
+}
+
+void checkFinalStrain(DrivePath path, double to, const std::string& option) {
+  if (!(to > 0) || !std::isfinite(to))
+    throw Error(detail::concat("final strain must be positive and finite, got ", to),
+                {"", 0, option});
+  if (path == DrivePath::Confined && to >= 1)
+    throw Error(detail::concat("confined compression to a strain of ", to,
+                               " (1 or more) crushes the point to zero volume"),
+                {"", 0, option});
+}
+
 std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& o) {
-  LAMINA_CHECK(o.rate > 0 && std::isfinite(o.rate), "--rate must be positive, got ", o.rate);
-  LAMINA_CHECK(o.to > 0 && std::isfinite(o.to), "--to must be positive, got ", o.to);
+  checkRate(o.rate, "--rate");
+  checkFinalStrain(o.path, o.to, "--to");
   LAMINA_CHECK(o.steps >= 1, "--steps must be at least 1");
-  LAMINA_CHECK(!(o.path == DrivePath::Confined && o.to >= 1),
-               "confined compression to a strain of 1 or more crushes the point");
   Point point(law, o.kinematics);
   std::vector<DriveRow> rows{DriveRow{}};
   const double dt = o.to / o.rate / o.steps;

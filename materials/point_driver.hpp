@@ -48,6 +48,25 @@ struct DriveOptions {
   Kinematics kinematics = Kinematics::Finite; ///< finite (default) or small
 };
 
+/// Slowest driven strain rate accepted (1/s): at 1e-12 /s a strain of 1e-3
+/// takes 30 years; below it a rate is a typo or an underflow (a denormal
+/// rate makes dt = strain / rate overflow to infinity).
+inline constexpr double kMinRate = 1e-12;
+/// Fastest driven strain rate accepted (1/s): at 1e12 /s a strain of 1e-3
+/// takes a femtosecond, far below the atomic vibration periods any continuum
+/// law describes.
+inline constexpr double kMaxRate = 1e12;
+
+/// Throws lamina::Error naming @p option (e.g. "--rate") unless @p rate is
+/// in [kMinRate, kMaxRate] (with @p allow_infinite, +inf too: an
+/// instantaneous tangent).
+void checkRate(double rate, const std::string& option, bool allow_infinite = false);
+
+/// Throws lamina::Error naming @p option (e.g. "--to") unless @p to is a
+/// positive finite strain, below 1 on the confined path (a compression of 1
+/// crushes the point to zero volume).
+void checkFinalStrain(DrivePath path, double to, const std::string& option);
+
 /// One output row.
 struct DriveRow {
   double t = 0;                    ///< s

@@ -1,4 +1,5 @@
 // The `membrane` program: thin CLI over lamina::membrane (run, converge).
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/interrupt.hpp"
 #include "membrane/converge.hpp"
@@ -93,6 +94,12 @@ int main(int argc, char** argv) {
       }
       if (out_dir.empty()) // never litter the working directory
         out_dir = (std::filesystem::path("out") / std::filesystem::path(case_path).stem()).string();
+      // the output folder is a folder (or new), and not an input of the run
+      std::error_code ec;
+      if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
+        throw Error("the output folder exists and is not a directory; refusing to replace it",
+                    {out_dir, 0, "--out"});
+      core::checkOutputIsNotInput(out_dir, {case_path, library}, "--out");
       opt.out_dir = out_dir;
       opt.quiet = quiet;
       opt.restart = !restart_dir.empty();
@@ -124,6 +131,9 @@ int main(int argc, char** argv) {
     return kExitUserError;
   } catch (const std::exception& e) {
     std::cerr << "membrane: error: " << e.what() << "\n";
+    return kExitUserError;
+  } catch (...) {
+    std::cerr << "membrane: error: unexpected error (not a std::exception)\n";
     return kExitUserError;
   }
   return kExitOk;

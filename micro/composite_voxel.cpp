@@ -1,6 +1,7 @@
 #include "micro/composite_voxel.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "micro/inside_query.hpp"
 
 #include <algorithm>
@@ -292,40 +293,44 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
     std::array<int, 3> lo{}, hi{};
     voxelRange(inc, n, size, lo, hi);
     std::vector<std::pair<std::size_t, double>> found;
+    core::ParallelErrors errors; // allocation, a query refusing a shape
 #pragma omp parallel
     {
       std::vector<std::pair<std::size_t, double>> mine;
 #pragma omp for schedule(dynamic)
       for (int i = lo[0]; i <= hi[0]; ++i)
-        for (int j = lo[1]; j <= hi[1]; ++j)
-          for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
-            // a run of voxels wholly on one side: no voxel of it is cut
-            const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
-            if (inc.shape != Shape::Layer && query.runSide(i, j, k0, k1, h) != 0)
-              continue;
-            for (int k = k0; k <= k1; ++k) {
-              const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
-              double f = 0;
-              if (inc.shape == Shape::Layer) {
-                f = layerFraction(inc, corner + 0.5 * h, h, size);
-                const bool centre = query.contains(corner + 0.5 * h);
-                if ((f == 0 && !centre) || (f == 1 && centre))
-                  continue; // whole voxel on the side its centre sampled
-              } else {
-                // voxels wholly on one side (all 8 corners agree) need no corner tests
-                if (query.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
-                  continue;
-                f = sampledFraction(inc, query, corner, h, size);
-                if (f < 0)
-                  continue;
+        errors.run([&] {
+          for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
+              // a run of voxels wholly on one side: no voxel of it is cut
+              const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
+              if (inc.shape != Shape::Layer && query.runSide(i, j, k0, k1, h) != 0)
+                continue;
+              for (int k = k0; k <= k1; ++k) {
+                const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
+                double f = 0;
+                if (inc.shape == Shape::Layer) {
+                  f = layerFraction(inc, corner + 0.5 * h, h, size);
+                  const bool centre = query.contains(corner + 0.5 * h);
+                  if ((f == 0 && !centre) || (f == 1 && centre))
+                    continue; // whole voxel on the side its centre sampled
+                } else {
+                  // voxels wholly on one side (all 8 corners agree) need no corner tests
+                  if (query.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
+                    continue;
+                  f = sampledFraction(inc, query, corner, h, size);
+                  if (f < 0)
+                    continue;
+                }
+                const std::size_t idx = wrappedVoxelIndex(i, j, k, n);
+                mine.emplace_back(idx, f);
               }
-              const std::size_t idx = wrappedVoxelIndex(i, j, k, n);
-              mine.emplace_back(idx, f);
             }
-          }
+        });
 #pragma omp critical
-      found.insert(found.end(), mine.begin(), mine.end());
+      errors.run([&] { found.insert(found.end(), mine.begin(), mine.end()); });
     }
+    errors.rethrow();
     for (const auto& [idx, f] : found)
       cut.push_back({idx, static_cast<int>(q), f});
   }
@@ -401,22 +406,26 @@ VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials:
   const std::size_t base = m.C.size(), nc = cell.composites.size();
   m.C.resize(base + nc + rotations.size());
   m.density.resize(base + nc + rotations.size());
+  core::ParallelErrors errors; // a laminate refusing its plies
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nc); ++i) {
-    const CompositeVoxel& v = cell.composites[static_cast<std::size_t>(i)];
-    const auto in = static_cast<std::size_t>(v.inside), out = static_cast<std::size_t>(v.outside);
-    const std::size_t e = base + static_cast<std::size_t>(i);
-    m.phase[v.index] = static_cast<std::int32_t>(e);
-    m.C[e] = laminateStiffness(stiffnessIn(v.index, v.inside), C[out], v.fraction, v.normal);
-    m.density[e] = v.fraction * density[in] + (1 - v.fraction) * density[out];
-  }
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(nc); ++i)
+    errors.run([&] {
+      const CompositeVoxel& v = cell.composites[static_cast<std::size_t>(i)];
+      const auto in = static_cast<std::size_t>(v.inside), out = static_cast<std::size_t>(v.outside);
+      const std::size_t e = base + static_cast<std::size_t>(i);
+      m.phase[v.index] = static_cast<std::int32_t>(e);
+      m.C[e] = laminateStiffness(stiffnessIn(v.index, v.inside), C[out], v.fraction, v.normal);
+      m.density[e] = v.fraction * density[in] + (1 - v.fraction) * density[out];
+    });
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(rotations.size()); ++r) {
-    const auto& [ph, axis, angle] = rotations[static_cast<std::size_t>(r)];
-    const std::size_t e = base + nc + static_cast<std::size_t>(r);
-    m.C[e] = C[static_cast<std::size_t>(ph)].rotated(materials::axisRotation(axis, angle));
-    m.density[e] = density[static_cast<std::size_t>(ph)];
-  }
+  for (std::ptrdiff_t r = 0; r < static_cast<std::ptrdiff_t>(rotations.size()); ++r)
+    errors.run([&] {
+      const auto& [ph, axis, angle] = rotations[static_cast<std::size_t>(r)];
+      const std::size_t e = base + nc + static_cast<std::size_t>(r);
+      m.C[e] = C[static_cast<std::size_t>(ph)].rotated(materials::axisRotation(axis, angle));
+      m.density[e] = density[static_cast<std::size_t>(ph)];
+    });
+  errors.rethrow();
   for (std::size_t w = 0, r = 0; w < whole.size(); ++w) {
     if (whole[w].first != rotations[r])
       ++r;

@@ -6,6 +6,8 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
+
 namespace lamina::micro::detail {
 
 namespace {
@@ -24,13 +26,18 @@ herr_t collect(hid_t, const char* name, const H5O_info_t* info, void* out) {
 struct OpenDataset {
   core::H5Handle file, set, type;
   std::vector<hsize_t> dims;
+  std::uint64_t bytes = 0; ///< size of the file
 };
 
 OpenDataset open(const ImageSource& src) {
   OpenDataset d;
+  d.bytes = openImage(src).size(); // a regular file: HDF5 would block on a FIFO
   d.file = core::H5Handle(H5Fopen(src.path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (d.file.id() < 0)
-    imageError(src, "not an HDF5 file (or unreadable)");
+  if (d.file.id() < 0) {
+    const std::string reason = core::hdf5TruncationReason();
+    imageError(src, reason.empty() ? "not an HDF5 file (or unreadable)"
+                                   : "truncated HDF5 file: " + reason);
+  }
   const std::string name = datasetOf(src);
   const htri_t ok = H5Lexists(d.file.id(), name.c_str(), H5P_DEFAULT);
   if (ok > 0)
@@ -63,9 +70,45 @@ OpenDataset open(const ImageSource& src) {
 
 std::array<int, 3> xyzDims(const OpenDataset& d, const ImageSource& src) {
   std::array<int, 3> n{};
-  for (std::size_t a = 0; a < 3; ++a)
-    n[a] = static_cast<int>(d.dims[src.axes == AxisOrder::Xyz ? a : 2 - a]);
+  for (std::size_t a = 0; a < 3; ++a) {
+    const hsize_t m = d.dims[src.axes == AxisOrder::Xyz ? a : 2 - a];
+    if (m < 1 || m > 1000000000)
+      imageError(src, "dataset '" + datasetOf(src) + "' has " + std::to_string(m) +
+                          " voxels along " + std::string(1, "xyz"[a]) + " (1 to 1e9 accepted)");
+    n[a] = static_cast<int>(m);
+  }
   return n;
+}
+
+/// Checks that the file holds every label the dataset's dimensions name:
+/// contiguous data whole and inside the file, every chunk of chunked data
+/// written (an unwritten chunk would read as fill values).
+void checkStorage(const OpenDataset& d, const ImageSource& src, std::size_t voxels) {
+  const std::string name = "dataset '" + datasetOf(src) + "'";
+  core::H5Handle dcpl(H5Dget_create_plist(d.set.id()), H5Pclose);
+  const H5D_layout_t layout = H5Pget_layout(dcpl.id());
+  const std::uint64_t need = voxels * H5Tget_size(d.type.id());
+  if (layout == H5D_CONTIGUOUS) {
+    const hsize_t stored = H5Dget_storage_size(d.set.id());
+    const haddr_t at = H5Dget_offset(d.set.id());
+    if (stored < need || at == HADDR_UNDEF || at > d.bytes || need > d.bytes - at)
+      imageError(src, "truncated HDF5 file: " + name + " needs " + std::to_string(need) +
+                          " bytes of labels, the file holds " +
+                          (at == HADDR_UNDEF ? std::string("none written")
+                                             : std::to_string(std::min<std::uint64_t>(
+                                                   stored, d.bytes - std::min(d.bytes, at)))));
+  } else if (layout == H5D_CHUNKED) {
+    hsize_t chunk[3] = {1, 1, 1}, chunks = 0;
+    H5Pget_chunk(dcpl.id(), 3, chunk);
+    hsize_t expected = 1;
+    for (std::size_t a = 0; a < 3; ++a)
+      expected *= (d.dims[a] + std::max<hsize_t>(chunk[a], 1) - 1) / std::max<hsize_t>(chunk[a], 1);
+    core::H5Handle space(H5Dget_space(d.set.id()), H5Sclose);
+    if (H5Dget_num_chunks(d.set.id(), space.id(), &chunks) < 0 || chunks < expected)
+      imageError(src, "truncated HDF5 file: " + name + " stores " + std::to_string(chunks) +
+                          " of its " + std::to_string(expected) +
+                          " chunks (the rest would read as fill values)");
+  }
 }
 
 std::optional<double> doubleAttribute(hid_t set, const char* name) {
@@ -90,6 +133,7 @@ VoxelImage readHdf5Image(const ImageSource& src) {
   VoxelImage img;
   img.n = xyzDims(d, src);
   checkImageMemory(src, img.voxels(), 4);
+  checkStorage(d, src, img.voxels());
   std::vector<std::int32_t> raw(img.voxels());
   // HDF5 converts any integer type and byte order to native int32
   core::H5Handle xfer(H5Pcreate(H5P_DATASET_XFER), H5Pclose);

@@ -58,7 +58,7 @@ ImageSource readImageSource(const core::TableReader& c, const std::string& cell_
                         "' from its extension (.h5, .vti, .raw, .tif): give format = \"...\"");
   }
   const bool raw = s.format == ImageFormat::Raw;
-  for (const char* k : {"dimensions", "type", "byte_order", "header_bytes"})
+  for (const char* k : {"type", "byte_order", "header_bytes"})
     if (!raw && c.has(k))
       c.fail(k, std::string("applies to raw images only (this one is ") + toString(s.format) + ")");
   if (c.has("dataset")) {
@@ -68,10 +68,12 @@ ImageSource readImageSource(const core::TableReader& c, const std::string& cell_
     if (s.format == ImageFormat::Hdf5 && (s.dataset.empty() || s.dataset[0] != '/'))
       c.fail("dataset", "an HDF5 dataset path starts with '/' (e.g. \"/phases\")");
   }
+  // raw: the layout of the file; any other format: checked against its header
+  if (c.has("dimensions"))
+    s.dimensions = readCounts(c, "dimensions", 1);
   if (raw) {
     if (!c.has("dimensions"))
       c.fail("dimensions", "a raw image needs dimensions = [Nx, Ny, Nz]");
-    s.dimensions = readCounts(c, "dimensions", 1);
     const std::string t = c.getString("type");
     if (!parseScalarType(t, s.type))
       c.fail("type", "unknown type '" + t +

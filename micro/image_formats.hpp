@@ -7,6 +7,7 @@
 #include "micro/image_io.hpp"
 
 #include "core/error.hpp"
+#include "core/input_file.hpp"
 
 #include <string>
 
@@ -39,6 +40,11 @@ VoxelImage readTiffImage(const ImageSource& src);
 std::array<int, 3> probeTiffImage(const ImageSource& src);
 /// Writes one page per z slice in the smallest unsigned type holding the labels.
 void writeTiffImage(const VoxelImage& image, const std::filesystem::path& path);
+
+/// Opens the image file of @p src after the checks of core::InputFile (a
+/// regular file of at most core::kMaxImageBytes); errors name the image, the
+/// cell file and its key.
+core::InputFile openImage(const ImageSource& src);
 
 /// Throws lamina::Error "MESSAGE" with the file and key of @p src.
 [[noreturn]] void imageError(const ImageSource& src, const std::string& message);

@@ -1,5 +1,6 @@
 #include "micro/image_io.hpp"
 
+#include "core/parallel.hpp"
 #include "core/resources.hpp"
 #include "micro/image_formats.hpp"
 
@@ -109,6 +110,13 @@ namespace detail {
 
 void imageError(const ImageSource& src, const std::string& message) {
   throw Error(message + " (image " + src.path.string() + ")", {src.cell_file, 0, src.key});
+}
+
+core::InputFile openImage(const ImageSource& src) {
+  std::error_code ec;
+  if (!std::filesystem::exists(src.path, ec))
+    imageError(src, "image file not found");
+  return core::InputFile(src.path, "image", core::kMaxImageBytes, {src.cell_file, 0, src.key});
 }
 
 void checkImageMemory(const ImageSource& src, std::size_t voxels, std::size_t bytes_per_voxel) {
@@ -260,33 +268,47 @@ VoxelImage downsampleImage(const VoxelImage& image, int f, const ImageSource& sr
     out.spacing = *image.spacing * f;
   out.value.resize(out.voxels());
   const std::size_t F = static_cast<std::size_t>(f);
+  core::ParallelErrors errors; // the vote count allocates
 #pragma omp parallel for schedule(static)
-  for (int I = 0; I < out.n[0]; ++I) {
-    std::map<std::int32_t, int> votes;
-    for (std::size_t J = 0; J < static_cast<std::size_t>(out.n[1]); ++J)
-      for (std::size_t K = 0; K < static_cast<std::size_t>(out.n[2]); ++K) {
-        votes.clear();
-        for (std::size_t a = 0; a < F; ++a)
-          for (std::size_t b = 0; b < F; ++b)
-            for (std::size_t c = 0; c < F; ++c)
-              ++votes[image.value[detail::xSlowest(image.n, static_cast<std::size_t>(I) * F + a,
-                                                   J * F + b, K * F + c)]];
-        // most votes; std::map iterates labels in increasing order, so a tie
-        // keeps the smallest label
-        auto best = votes.begin();
-        for (auto it = votes.begin(); it != votes.end(); ++it)
-          if (it->second > best->second)
-            best = it;
-        out.value[detail::xSlowest(out.n, static_cast<std::size_t>(I), J, K)] = best->first;
-      }
-  }
+  for (int I = 0; I < out.n[0]; ++I)
+    errors.run([&] {
+      std::map<std::int32_t, int> votes;
+      for (std::size_t J = 0; J < static_cast<std::size_t>(out.n[1]); ++J)
+        for (std::size_t K = 0; K < static_cast<std::size_t>(out.n[2]); ++K) {
+          votes.clear();
+          for (std::size_t a = 0; a < F; ++a)
+            for (std::size_t b = 0; b < F; ++b)
+              for (std::size_t c = 0; c < F; ++c)
+                ++votes[image.value[detail::xSlowest(image.n, static_cast<std::size_t>(I) * F + a,
+                                                     J * F + b, K * F + c)]];
+          // most votes; std::map iterates labels in increasing order, so a tie
+          // keeps the smallest label
+          auto best = votes.begin();
+          for (auto it = votes.begin(); it != votes.end(); ++it)
+            if (it->second > best->second)
+              best = it;
+          out.value[detail::xSlowest(out.n, static_cast<std::size_t>(I), J, K)] = best->first;
+        }
+    });
+  errors.rethrow();
   return out;
 }
 
 namespace {
-VoxelImage readWhole(const ImageSource& src) {
-  if (!std::filesystem::exists(src.path))
-    detail::imageError(src, "image file not found");
+/// Refuses an image whose header gives other dimensions than the cell
+/// file's `dimensions` (when it states them).
+std::array<int, 3> checkDeclared(const std::array<int, 3>& n, const ImageSource& src) {
+  const auto& m = src.dimensions;
+  if (src.format != ImageFormat::Raw && m != std::array<int, 3>{0, 0, 0} && m != n)
+    throw Error("the image " + src.path.string() + " holds " + std::to_string(n[0]) + " x " +
+                    std::to_string(n[1]) + " x " + std::to_string(n[2]) + " voxels, the cell " +
+                    "declares " + std::to_string(m[0]) + " x " + std::to_string(m[1]) + " x " +
+                    std::to_string(m[2]) + " (truncated stack or wrong file?)",
+                {src.cell_file, 0, "cell.dimensions"});
+  return n;
+}
+
+VoxelImage readFormat(const ImageSource& src) {
   switch (src.format) {
   case ImageFormat::Hdf5:
     return detail::readHdf5Image(src);
@@ -300,20 +322,29 @@ VoxelImage readWhole(const ImageSource& src) {
   return {};
 }
 
-std::array<int, 3> probeWhole(const ImageSource& src) {
-  if (!std::filesystem::exists(src.path))
-    detail::imageError(src, "image file not found");
+VoxelImage readWhole(const ImageSource& src) {
+  VoxelImage img = readFormat(src);
+  checkDeclared(img.n, src);
+  return img;
+}
+
+std::array<int, 3> probeFormat(const ImageSource& src) {
   switch (src.format) {
   case ImageFormat::Hdf5:
     return detail::probeHdf5Image(src);
   case ImageFormat::Vti:
     return detail::probeVtiImage(src);
   case ImageFormat::Raw:
+    detail::openImage(src); // a regular file
     return src.dimensions;
   case ImageFormat::Tiff:
     return detail::probeTiffImage(src);
   }
   return {};
+}
+
+std::array<int, 3> probeWhole(const ImageSource& src) {
+  return checkDeclared(probeFormat(src), src);
 }
 } // namespace
 

@@ -4,8 +4,10 @@
 /// an image in the same formats image cells read: the labels are the phase
 /// ids) and prints the volume fractions reached.
 
+#include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "materials/catalog.hpp"
 #include "micro/cell.hpp"
 #include "micro/image_cell.hpp"
 #include "micro/phase_map_io.hpp"
@@ -17,6 +19,29 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <vector>
+
+namespace {
+
+/// Refuses @p out (and the .xdmf beside an .h5) when it is not a regular
+/// file or is one of the run's inputs: the cell file, the catalog, the image.
+void checkOutputs(const std::string& out, const lamina::micro::CellSpec& spec,
+                  const std::string& cell_path, const std::string& catalog) {
+  std::vector<std::filesystem::path> inputs{
+      cell_path,
+      catalog.empty() ? lamina::materials::Catalog::defaultPath() : std::filesystem::path(catalog)};
+  if (spec.image)
+    inputs.push_back(spec.image->path);
+  lamina::core::checkOutput(out, inputs, "--out");
+  lamina::micro::ImageFormat format = lamina::micro::ImageFormat::Hdf5;
+  if (lamina::micro::formatFromExtension(out, format) &&
+      format == lamina::micro::ImageFormat::Hdf5) {
+    std::filesystem::path xdmf = out;
+    lamina::core::checkOutput(xdmf.replace_extension(".xdmf"), inputs, "--out (its .xdmf)");
+  }
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"micro: build a voxel unit cell and write its phase map"};
@@ -41,6 +66,7 @@ int main(int argc, char** argv) {
   try {
     using namespace lamina::micro;
     const CellSpec spec = readCell(cell_path, lazyCatalog(catalog));
+    checkOutputs(out, spec, cell_path, catalog); // before anything is built
     std::array<int, 3> n = spec.resolution;
     if (resolution > 0)
       n = {resolution, resolution, resolution};
@@ -88,6 +114,9 @@ int main(int argc, char** argv) {
     return lamina::kExitUserError;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "micro: %s\n", e.what());
+    return lamina::kExitUserError;
+  } catch (...) {
+    std::fputs("micro: unexpected error (not a std::exception)\n", stderr);
     return lamina::kExitUserError;
   }
   return 0;

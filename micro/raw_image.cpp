@@ -5,40 +5,39 @@
 #include "micro/image_formats.hpp"
 
 #include <cstring>
-#include <fstream>
 
 namespace lamina::micro::detail {
 
 VoxelImage readRawImage(const ImageSource& src) {
+  const core::InputFile in = openImage(src);
   VoxelImage img;
   img.n = src.dimensions;
   const std::size_t bytes = static_cast<std::size_t>(bytesOf(src.type));
+  const std::uint64_t have = in.size();
+  // in double first: dimensions up to 1e9 each overflow 64 bits
+  const double need_d = static_cast<double>(src.header_bytes) +
+                        static_cast<double>(img.n[0]) * img.n[1] * img.n[2] * bytes;
+  const std::string what = std::to_string(img.n[0]) + " x " + std::to_string(img.n[1]) + " x " +
+                           std::to_string(img.n[2]) + " " + toString(src.type) + " voxels after " +
+                           std::to_string(src.header_bytes) + " header bytes";
+  if (need_d > static_cast<double>(have))
+    imageError(src, "truncated raw file: " + what + " need " +
+                        (need_d < 1e18 ? std::to_string(static_cast<std::uint64_t>(need_d))
+                                       : std::to_string(need_d)) +
+                        " bytes, the file has " + std::to_string(have));
   const std::uint64_t need = src.header_bytes + img.voxels() * bytes;
-  const std::uint64_t have = std::filesystem::file_size(src.path);
-  if (have < need)
-    imageError(src, "truncated raw file: " + std::to_string(img.n[0]) + " x " +
-                        std::to_string(img.n[1]) + " x " + std::to_string(img.n[2]) + " " +
-                        toString(src.type) + " voxels after " + std::to_string(src.header_bytes) +
-                        " header bytes need " + std::to_string(need) + " bytes, the file has " +
-                        std::to_string(have));
   if (have > need)
     imageError(src, "size mismatch: the raw file has " + std::to_string(have) + " bytes but " +
-                        std::to_string(img.n[0]) + " x " + std::to_string(img.n[1]) + " x " +
-                        std::to_string(img.n[2]) + " " + toString(src.type) + " voxels after " +
-                        std::to_string(src.header_bytes) + " header bytes take " +
-                        std::to_string(need) + " (check dimensions, type and header_bytes)");
+                        what + " take " + std::to_string(need) +
+                        " (check dimensions, type and header_bytes)");
   checkImageMemory(src, img.voxels(), bytes);
   std::vector<unsigned char> buf(img.voxels() * bytes);
-  std::ifstream in(src.path, std::ios::binary);
-  in.seekg(static_cast<std::streamoff>(src.header_bytes));
-  if (!in.read(reinterpret_cast<char*>(buf.data()), static_cast<std::streamsize>(buf.size())))
-    imageError(src, "cannot read the raw file (truncated while reading)");
+  in.readAt(src.header_bytes, buf.data(), buf.size());
   std::vector<std::int32_t> file(img.voxels());
   decodeLabels(buf.data(), file.size(), src.type, src.big_endian, file.data(), src);
   img.value = toXSlowest(std::move(file), img.n, src.axes);
   return img;
 }
-
 void writeRawImage(const VoxelImage& image, const std::filesystem::path& path, ScalarType type) {
   const std::size_t b = static_cast<std::size_t>(bytesOf(type));
   std::string out(image.voxels() * b, '\0');

@@ -1,6 +1,7 @@
 #include "micro/unit_cell.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/resources.hpp"
 #include "micro/composite_voxel.hpp"
 #include "micro/image_cell.hpp"
@@ -211,21 +212,25 @@ void forEachVoxelInside(const Inclusion& inc, const std::array<int, 3>& n,
   const InsideQuery query(inc, size);
   std::array<int, 3> lo{}, hi{};
   voxelRange(inc, n, size, lo, hi);
+  core::ParallelErrors errors; // visit may throw
 #pragma omp parallel for schedule(static)
   for (int i = lo[0]; i <= hi[0]; ++i)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
-        // a run of voxels wholly outside is skipped, wholly inside visited
-        const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
-        const int run = query.runSide(i, j, k0, k1, h);
-        if (run < 0)
-          continue;
-        for (int k = k0; k <= k1; ++k) {
-          const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
-          if (run > 0 || query.contains(p))
-            visit(wrappedVoxelIndex(i, j, k, n));
+    errors.run([&] {
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
+          // a run of voxels wholly outside is skipped, wholly inside visited
+          const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
+          const int run = query.runSide(i, j, k0, k1, h);
+          if (run < 0)
+            continue;
+          for (int k = k0; k <= k1; ++k) {
+            const Eigen::Vector3d p((i + 0.5) * h[0], (j + 0.5) * h[1], (k + 0.5) * h[2]);
+            if (run > 0 || query.contains(p))
+              visit(wrappedVoxelIndex(i, j, k, n));
+          }
         }
-      }
+    });
+  errors.rethrow();
 }
 
 std::vector<std::int32_t> voxelize(const std::vector<Inclusion>& inclusions,

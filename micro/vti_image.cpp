@@ -15,9 +15,10 @@
 #include <openssl/evp.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 namespace lamina::micro::detail {
@@ -125,12 +126,7 @@ struct Parsed {
 
 Parsed parse(const ImageSource& src) {
   Parsed p;
-  std::ifstream in(src.path, std::ios::binary);
-  if (!in)
-    imageError(src, "cannot open the .vti file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  p.content = ss.str();
+  p.content = openImage(src).readAll();
   // The appended section holds raw bytes that are not XML: parse only up to
   // the end of its start tag.
   std::size_t xml_end = p.content.size();
@@ -196,10 +192,19 @@ const VtiArray& pickArray(const VtiDoc& d, const ImageSource& src) {
   return d.arrays.front();
 }
 
-std::array<int, 3> dimsOf(const VtiDoc& d, const VtiArray& a) {
+/// The voxels along x, y, z of @p a; an extent that gives none, or more
+/// than an int counts, is an error.
+std::array<int, 3> dimsOf(const VtiDoc& d, const VtiArray& a, const ImageSource& src) {
   std::array<int, 3> n{};
-  for (std::size_t i = 0; i < 3; ++i)
-    n[i] = static_cast<int>(d.extent[2 * i + 1] - d.extent[2 * i] + (a.cell ? 0 : 1));
+  for (std::size_t i = 0; i < 3; ++i) {
+    // in long double: extents near the limits of long overflow a difference
+    const long double m = static_cast<long double>(d.extent[2 * i + 1]) -
+                          static_cast<long double>(d.extent[2 * i]) + (a.cell ? 0 : 1);
+    if (m < 1 || m > 1e9)
+      imageError(src, "WholeExtent gives " + std::to_string(static_cast<double>(m)) +
+                          " voxels along " + std::string(1, "xyz"[i]) + " (1 to 1e9 accepted)");
+    n[i] = static_cast<int>(m);
+  }
   return n;
 }
 
@@ -240,9 +245,10 @@ std::uint64_t readHeader(const unsigned char* p, const VtiDoc& d) {
   return v;
 }
 
-/// The array's bytes (after the header, decompressed) from @p bytes.
-std::vector<unsigned char> unpack(const unsigned char* bytes, std::size_t avail, const VtiDoc& d,
-                                  const ImageSource& src) {
+/// The array's bytes (after the header, decompressed) from @p bytes; a zlib
+/// header whose sizes do not add up to @p expect bytes is refused.
+std::vector<unsigned char> unpack(const unsigned char* bytes, std::size_t avail,
+                                  std::uint64_t expect, const VtiDoc& d, const ImageSource& src) {
   const std::size_t hs = d.header_type == "UInt64" ? 8 : 4;
   auto truncated = [&](std::uint64_t need) {
     imageError(src, "truncated .vti file: the array needs " + std::to_string(need) +
@@ -252,8 +258,8 @@ std::vector<unsigned char> unpack(const unsigned char* bytes, std::size_t avail,
     truncated(hs);
   if (d.compressor.empty()) {
     const std::uint64_t n = readHeader(bytes, d);
-    if (avail < hs + n)
-      truncated(hs + n);
+    if (n > avail - hs) // not hs + n: a 64-bit count would wrap
+      truncated(n < UINT64_MAX - hs ? hs + n : UINT64_MAX);
     return {bytes + hs, bytes + hs + n};
   }
   if (avail < 3 * hs)
@@ -262,15 +268,23 @@ std::vector<unsigned char> unpack(const unsigned char* bytes, std::size_t avail,
   std::uint64_t last = readHeader(bytes + 2 * hs, d);
   if (last == 0)
     last = bs;
+  if (blocks > avail / hs)
+    truncated(static_cast<std::uint64_t>(std::min<long double>((3.0L + blocks) * hs, 1e19L)));
   const std::size_t head = (3 + blocks) * hs;
   if (avail < head)
     truncated(head);
+  // the header's uncompressed size against the extent, before allocating it
+  const long double total = blocks == 0 ? 0.0L : (blocks - 1.0L) * bs + last;
+  if (total != static_cast<long double>(expect))
+    imageError(src, "size mismatch: the zlib header gives " +
+                        std::to_string(static_cast<double>(total)) + " bytes, the extent needs " +
+                        std::to_string(expect));
   std::vector<unsigned char> out(blocks == 0 ? 0 : (blocks - 1) * bs + last);
   std::size_t at = head, to = 0;
   for (std::uint64_t b = 0; b < blocks; ++b) {
     const std::uint64_t cs = readHeader(bytes + (3 + b) * hs, d);
-    if (avail < at + cs)
-      truncated(at + cs);
+    if (cs > avail - at)
+      truncated(cs < UINT64_MAX - at ? at + cs : UINT64_MAX);
     uLongf len = static_cast<uLongf>(b + 1 == blocks ? last : bs);
     if (uncompress(&out[to], &len, bytes + at, static_cast<uLong>(cs)) != Z_OK ||
         len != (b + 1 == blocks ? last : bs))
@@ -296,20 +310,26 @@ bool scalarTypeOf(const std::string& vtk, ScalarType& t) {
   return false;
 }
 
+/// @return the bytes of one element of @p a (an integer or float type)
+std::size_t elementBytes(const VtiArray& a, const ImageSource& src) {
+  ScalarType t;
+  if (a.type == "Float32" || a.type == "Float64")
+    return a.type == "Float32" ? 4 : 8;
+  if (!scalarTypeOf(a.type, t))
+    imageError(src,
+               "array '" + a.name + "' has type '" + a.type + "'; labels need an integer type");
+  return static_cast<std::size_t>(bytesOf(t));
+}
+
 /// Decodes binary elements of VTK type @p vtk (integer or integral float).
 void decodeVtk(const std::vector<unsigned char>& bytes, std::size_t count, const VtiArray& a,
                const VtiDoc& d, std::int32_t* out, const ImageSource& src) {
   const bool big = d.byte_order == "BigEndian";
-  ScalarType t;
-  std::size_t es = 0;
+  ScalarType t = ScalarType::UInt8;
+  const std::size_t es = elementBytes(a, src);
   const bool is_float = a.type == "Float32" || a.type == "Float64";
-  if (is_float)
-    es = a.type == "Float32" ? 4 : 8;
-  else if (scalarTypeOf(a.type, t))
-    es = static_cast<std::size_t>(bytesOf(t));
-  else
-    imageError(src,
-               "array '" + a.name + "' has type '" + a.type + "'; labels need an integer type");
+  if (!is_float)
+    scalarTypeOf(a.type, t);
   if (bytes.size() < count * es)
     imageError(src, "truncated .vti file: array '" + a.name + "' holds " +
                         std::to_string(bytes.size() / es) + " values, the extent needs " +
@@ -345,7 +365,7 @@ void decodeVtk(const std::vector<unsigned char>& bytes, std::size_t count, const
 
 std::array<int, 3> probeVtiImage(const ImageSource& src) {
   const Parsed p = parse(src);
-  return dimsOf(p.doc, pickArray(p.doc, src));
+  return dimsOf(p.doc, pickArray(p.doc, src), src);
 }
 
 VoxelImage readVtiImage(const ImageSource& src) {
@@ -353,10 +373,7 @@ VoxelImage readVtiImage(const ImageSource& src) {
   const VtiDoc& d = p.doc;
   const VtiArray& a = pickArray(d, src);
   VoxelImage img;
-  img.n = dimsOf(d, a);
-  for (int m : img.n)
-    if (m < 1)
-      imageError(src, "empty extent");
+  img.n = dimsOf(d, a, src);
   if (a.components != 1)
     imageError(src, "array '" + a.name + "' has " + std::to_string(a.components) +
                         " components; labels have one");
@@ -403,7 +420,8 @@ VoxelImage readVtiImage(const ImageSource& src) {
       imageError(src, "array '" + a.name + "' has format '" + a.format +
                           "' (ascii, binary or appended)");
     }
-    const std::vector<unsigned char> data = unpack(bytes.data(), bytes.size(), d, src);
+    const std::vector<unsigned char> data =
+        unpack(bytes.data(), bytes.size(), count * elementBytes(a, src), d, src);
     decodeVtk(data, count, a, d, file.data(), src);
   }
   img.value = toXSlowest(std::move(file), img.n, AxisOrder::Zyx); // VTK: x fastest

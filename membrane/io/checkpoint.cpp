@@ -4,12 +4,13 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/hdf5_file.hpp"
+#include "core/input_file.hpp"
+#include "core/toml_reader.hpp"
 
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <fcntl.h>
-#include <fstream>
 #include <iterator>
 #include <sstream>
 #include <unistd.h>
@@ -158,10 +159,7 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
 
 std::string caseDigest(const std::filesystem::path& case_file,
                        const std::vector<std::string>& overrides) {
-  std::ifstream in(case_file, std::ios::binary);
-  if (!in)
-    throw Error("cannot read the case file", {case_file.string(), 0, ""});
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = core::readWholeFile(case_file, core::kMaxTomlBytes, "case file");
   Fnv1a f;
   f.add(text);
   for (const auto& o : overrides)

@@ -1,7 +1,7 @@
 #include "membrane/io/msh_check.hpp"
 
 #include "core/error.hpp"
-#include "core/resources.hpp"
+#include "core/input_file.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <type_traits>
@@ -551,16 +550,7 @@ void checkMshText(const std::string& text, const std::string& file) {
 
 void checkMshFile(const std::filesystem::path& path) {
   const std::string file = path.string();
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (ec)
-    throw Error("cannot read the mesh file: " + ec.message(), ErrorContext{file, 0, ""});
-  core::requireMemory(double(size), "reading " + file, ErrorContext{file, 0, ""});
-  std::ifstream in(path, std::ios::binary);
-  std::string text(static_cast<std::size_t>(size), '\0');
-  if (!in.read(text.data(), static_cast<std::streamsize>(size)))
-    throw Error("cannot read the mesh file", ErrorContext{file, 0, ""});
-  checkMshText(text, file);
+  checkMshText(core::readWholeFile(path, core::kMaxMeshBytes, "mesh file"), file);
 }
 
 } // namespace lamina::membrane

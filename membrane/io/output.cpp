@@ -3,6 +3,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/input_file.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -200,6 +201,7 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& heade
   const ErrorContext where{part.string(), 0, ""};
   std::string first;
   {
+    core::checkRegularInput(part, "table being continued", core::kMaxTableBytes);
     std::ifstream in(part);
     std::getline(in, first);
   }

@@ -1,10 +1,10 @@
 #include "membrane/loads/blast.hpp"
 
 #include "core/format.hpp"
+#include "core/input_file.hpp"
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 namespace lamina::membrane {
@@ -403,9 +403,7 @@ PressureTable::PressureTable(std::vector<double> times, std::vector<double> pres
 }
 
 PressureTable PressureTable::readCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in)
-    throw Error("cannot open the pressure history", {path, 0, ""});
+  std::istringstream in(core::readWholeFile(path, core::kMaxTableBytes, "pressure table"));
   std::vector<double> t, p;
   std::string line;
   int line_no = 0;

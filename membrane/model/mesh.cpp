@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/input_file.hpp"
 #include "core/resources.hpp"
 #include "membrane/io/msh_check.hpp"
 
@@ -231,6 +232,7 @@ Mesh readGmsh(const std::filesystem::path& path, GmshProbe probe) {
   const std::string ext = path.extension().string();
   if (ext != ".msh" && ext != ".geo")
     throw Error("mesh file must be .msh or .geo, got '" + ext + "'", ErrorContext{file, 0, ""});
+  core::checkRegularInput(path, "mesh file", core::kMaxMeshBytes); // gmsh would block on a FIFO
 
   std::lock_guard<std::mutex> lock(gmsh_mutex);
   if (ext == ".msh") {

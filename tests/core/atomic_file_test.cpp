@@ -10,6 +10,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace core = lamina::core;
@@ -84,4 +85,57 @@ TEST(FileLock, ExcludesOtherLockersUntilReleased) {
     EXPECT_FALSE(tryLock());
   }
   EXPECT_TRUE(tryLock());
+}
+
+// An output replaces only a regular file: a FIFO, a symlink to a character
+// device (/dev/null) and a directory are refused, named in the error, and
+// are still what they were afterwards; nothing is left beside them.
+TEST(AtomicFile, RefusesToReplaceWhatIsNotARegularFile) {
+  const lamina::test::TempDir d;
+  const fs::path fifo = d.path() / "fifo.csv", null_link = d.path() / "null.csv",
+                 folder = d.path() / "folder.csv";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_symlink("/dev/null", null_link);
+  fs::create_directories(folder);
+  for (const fs::path& p : {fifo, null_link, folder}) {
+    const std::string msg = lamina::test::errorOf([&] { core::writeFileAtomically(p, "x"); });
+    EXPECT_NE(msg.find("refusing to write over"), std::string::npos) << p << ": " << msg;
+    EXPECT_NE(msg.find(p.filename().string() == "null.csv" ? "/dev/null" : p.string()),
+              std::string::npos)
+        << msg;
+    EXPECT_THROW(core::checkReplaceable(p, "--out"), lamina::Error);
+    core::writeFileAtomically(d.path() / "aside", "payload");
+    EXPECT_THROW(core::renameIntoPlace(d.path() / "aside", p), lamina::Error);
+    EXPECT_FALSE(fs::exists(d.path() / "aside")); // the temporary is removed
+  }
+  struct stat st {};
+  ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+  EXPECT_TRUE(fs::is_symlink(null_link));
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  EXPECT_TRUE(fs::is_directory(folder));
+  EXPECT_EQ(entries(d.path()), 3);
+  core::checkReplaceable(d.path() / "new.csv", "--out"); // absent: fine
+}
+
+// An output that is an input of the run (the same file by another name: a
+// symlink, a hard link, a path with "..") is refused naming both.
+TEST(AtomicFile, RefusesAnOutputThatIsAnInput) {
+  const lamina::test::TempDir d;
+  const fs::path lib = d.path() / "lib.toml";
+  lamina::test::writeFile(lib, "library");
+  fs::create_directories(d.path() / "sub");
+  fs::create_symlink(lib, d.path() / "link.toml");
+  fs::create_hard_link(lib, d.path() / "hard.toml");
+  for (const fs::path& out :
+       {lib, d.path() / "link.toml", d.path() / "hard.toml", d.path() / "sub/../lib.toml"}) {
+    const std::string msg = lamina::test::errorOf([&] {
+      core::checkOutput(out, {d.path() / "cell.toml", lib}, "--out");
+    });
+    EXPECT_NE(msg.find("is an input of the run (" + lib.string() + ")"), std::string::npos)
+        << out << ": " << msg;
+    EXPECT_NE(msg.find("--out"), std::string::npos) << msg;
+  }
+  core::checkOutput(d.path() / "other.csv", {lib, ""}, "--out"); // a new file: fine
+  EXPECT_EQ(lamina::test::readFile(lib), "library");
 }

@@ -2,7 +2,8 @@
 /// @file test_util.hpp
 /// @brief Helpers shared by the core and materials test suites: a temporary
 /// directory, whole-file reads and writes, the message of a lamina::Error and
-/// repeated text (hostile-input tests of several stages include it).
+/// repeated text, inputs that are not regular files and a guard against a
+/// hang (hostile-input tests of several stages include it).
 
 #include "core/error.hpp"
 
@@ -12,6 +13,11 @@
 #include <functional>
 #include <sstream>
 #include <stdexcept>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+#include <vector>
 #include <string>
 
 namespace lamina::test {
@@ -72,6 +78,43 @@ inline std::string repeat(const std::string& s, int n) {
   for (int i = 0; i < n; ++i)
     out += s;
   return out;
+}
+
+/// Kills the test process (SIGALRM) when it is still running after
+/// @p seconds: a reader that blocks on a FIFO fails its test instead of
+/// hanging the suite until the CTest timeout.
+class HangGuard {
+public:
+  explicit HangGuard(unsigned seconds) { ::alarm(seconds); }
+  ~HangGuard() { ::alarm(0); }
+  HangGuard(const HangGuard&) = delete;
+  HangGuard& operator=(const HangGuard&) = delete;
+};
+
+/// Creates, in @p dir, inputs named "NAME@p suffix" that are not regular
+/// files: a FIFO with no writer, a directory, a Unix socket, a symlink to
+/// /dev/null and a symlink to the FIFO. @return their paths.
+inline std::vector<std::filesystem::path> notRegularFiles(const TempDir& dir,
+                                                          const std::string& suffix) {
+  const auto fifo = dir / ("fifo" + suffix), folder = dir / ("folder" + suffix),
+             socket = dir / ("socket" + suffix), null = dir / ("devnull" + suffix),
+             to_fifo = dir / ("to-fifo" + suffix);
+  if (::mkfifo(fifo.c_str(), 0600) != 0)
+    throw std::runtime_error("mkfifo failed");
+  std::filesystem::create_directory(folder);
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  const std::string s = socket.string();
+  if (fd < 0 || s.size() >= sizeof addr.sun_path)
+    throw std::runtime_error("cannot create a socket");
+  s.copy(addr.sun_path, s.size());
+  if (::bind(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0)
+    throw std::runtime_error("cannot bind a socket");
+  ::close(fd); // the socket file stays
+  std::filesystem::create_symlink("/dev/null", null);
+  std::filesystem::create_symlink(fifo, to_fifo);
+  return {fifo, folder, socket, null, to_fifo};
 }
 
 } // namespace lamina::test

@@ -239,3 +239,69 @@ TEST(LibrarySideFiles, KilledWriterLeavesNoOrphans) {
   mat::Library(path).add(iso("after", 1000), false, sideText("after"));
   EXPECT_TRUE(debris(dir.path(), path).empty()) << debris(dir.path(), path).front();
 }
+
+// A command that adds several entries (a J sweep, --tangent-rates) adds all
+// or none: names that repeat among them, a name already in the library, an
+// invalid entry or a side writer failing after the first entry's side file
+// was placed all leave the library byte for byte as it was and no side file.
+TEST(LibraryTransactions, SeveralEntriesAreAddedAllOrNone) {
+  TempDir dir;
+  const auto path = dir / "lib.toml";
+  mat::Library(path).add(iso("old", 1000), false, sideText("old"));
+  const std::string before = readFile(path);
+  auto two = [](const std::string& a, const std::string& b, mat::Library::SideFileWriter second) {
+    std::vector<mat::Library::Addition> v;
+    v.push_back({iso(a, 1000), sideText(a)});
+    v.push_back({iso(b, 2000), std::move(second)});
+    return v;
+  };
+  mat::Library lib(path);
+  std::string msg = errorOf([&] { lib.add(two("p-R1e+05", "p-R1e+05", sideText("b")), false); });
+  EXPECT_NE(msg.find("two of the entries to add are named 'p-R1e+05'"), std::string::npos) << msg;
+  msg = errorOf([&] { lib.add(two("new", "old", sideText("b")), false); });
+  EXPECT_NE(msg.find("'old' is already in library"), std::string::npos) << msg;
+  auto failing = [](const fs::path& h5) {
+    writeFile(h5, "partial");
+    throw lamina::Error("disk full (test)");
+  };
+  EXPECT_THROW(lib.add(two("x1", "x2", failing), false), lamina::Error);
+  std::vector<mat::Library::Addition> bad = two("y1", "y2", sideText("y2"));
+  bad[1].material.density = -1; // invalid: refused before anything is written
+  EXPECT_THROW(lib.add(bad, false), lamina::Error);
+  EXPECT_EQ(readFile(path), before);
+  EXPECT_EQ(mat::Library(path).names(), (std::vector<std::string>{"old"}));
+  EXPECT_TRUE(debris(dir.path(), path).empty());
+  // and the good pair lands whole, each entry with its own side file
+  lib.add(two("z1", "z2", sideText("z2")), false);
+  const mat::Library after(path);
+  EXPECT_EQ(after.names(), (std::vector<std::string>{"old", "z1", "z2"}));
+  EXPECT_EQ(readFile(dir / after.get("z1").side_file), "z1");
+  EXPECT_EQ(readFile(dir / after.get("z2").side_file), "z2");
+}
+
+// Side files take the library's permission bits, and the side folder is no
+// more open than the library (x where r is set): a 0600 library gets 0600
+// side files in a 0700 folder, a 0640 one 0640 files in a 0750 folder (the
+// issue: 0644 side files under a 0600 library).
+TEST(LibrarySideFiles, SideFilesTakeTheLibrarysMode) {
+  for (const auto& [lib_mode, folder_mode] :
+       std::vector<std::pair<mode_t, mode_t>>{{0600, 0700}, {0640, 0750}}) {
+    TempDir dir;
+    const auto path = dir / "lib.toml";
+    mat::Library(path).add(iso("a", 1000));
+    ASSERT_EQ(::chmod(path.c_str(), lib_mode), 0);
+    mat::Library(path).add(iso("b", 1000), false, sideText("b"));
+    const fs::path h5 = dir / mat::Library(path).get("b").side_file;
+    fs::path xdmf = h5;
+    xdmf.replace_extension(".xdmf");
+    struct stat st {};
+    for (const fs::path& f : {h5, xdmf}) {
+      ASSERT_EQ(::stat(f.c_str(), &st), 0) << f;
+      EXPECT_EQ(st.st_mode & 07777, lib_mode) << f;
+    }
+    ASSERT_EQ(::stat((dir / "lib.side").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 07777, folder_mode);
+    ASSERT_EQ(::stat(path.c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 07777, lib_mode); // and the library keeps its own
+  }
+}

@@ -77,6 +77,17 @@ inline void write(const fs::path& p, const std::string& text) {
   out << text;
 }
 
+/// @return a fresh, empty folder under the temporary directory, named by
+/// @p prefix, the process and the running test (removed first if present)
+inline fs::path freshTestDir(const std::string& prefix) {
+  const fs::path dir =
+      fs::temp_directory_path() / (prefix + "_" + std::to_string(::getpid()) + "_" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
 /// @return whether @p program was built
 inline bool have(const std::string& program) {
   return fs::exists(kBin / program);

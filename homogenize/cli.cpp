@@ -1,0 +1,494 @@
+/// @file cli.cpp
+/// @brief `homogenize CELL.toml --name NAME [--library PATH] [--json]
+/// [--threads N] [--tol T] [--resolution N]`: effective C and density of a
+/// unit cell into the materials library. With `--path P --rate R --to S`:
+/// the nonlinear cell under that strain-rate history (nonlinear_run.hpp).
+/// Under `mpirun -np N` the linear homogenization runs over N ranks (rank 0
+/// builds the cell, scatters it, prints and writes the library).
+
+#include "homogenize/cli.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/names.hpp"
+#include "core/resources.hpp"
+#include "homogenize/distribution.hpp"
+#include "homogenize/homogenizer.hpp"
+#include "homogenize/library_entry.hpp"
+#include "homogenize/nonlinear_run.hpp"
+#include "materials/catalog.hpp"
+#include "materials/library.hpp"
+#include "materials/point_driver.hpp"
+#include "micro/cell.hpp"
+#include "micro/unit_cell.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+void printDispersion(const lamina::homogenize::EntryResult& e) {
+  if (!e.dispersion) {
+    std::printf("no micro-inertia: the cell has no size in metres ([cell] size)\n");
+    return;
+  }
+  const auto& d = *e.dispersion;
+  std::printf("dispersion zeta^2 D_lin (kg/m, lamina order; eqs. 38-39):\n");
+  for (int i = 0; i < 6; ++i) {
+    std::printf("  ");
+    for (int j = 0; j < 6; ++j)
+      std::printf(" %12.5g", d.D(i, j));
+    std::printf("\n");
+  }
+  std::printf("eq. 39 least-squares residual per load case");
+  for (double r : d.residual)
+    std::printf(" %.2g", r);
+  std::printf("\ncharacteristic length sqrt(zeta^2 D_II / rho) (m):");
+  for (int i = 0; i < 6; ++i)
+    std::printf(" %.3g", std::sqrt(std::max(0.0, d.D(i, i)) / e.result.density));
+  std::printf("\n");
+}
+
+void printHuman(const lamina::homogenize::EntryResult& e, const lamina::micro::UnitCell& cell,
+                const std::string& library) {
+  const std::string& name = e.name;
+  const lamina::homogenize::Result& r = e.result;
+  std::printf("%s: %zu voxels (%d x %d x %d), density %.6g kg/m^3\n", name.c_str(), r.voxels,
+              cell.n[0], cell.n[1], cell.n[2], r.density);
+  std::printf("C (GPa, lamina order xx yy zz xy yz xz, engineering shear):\n");
+  for (int i = 0; i < 6; ++i) {
+    std::printf("  ");
+    for (int j = 0; j < 6; ++j)
+      std::printf(" %12.6g", r.C(i, j) * 1e-9);
+    std::printf("\n");
+  }
+  std::printf("load cases: iterations");
+  for (int it : r.iterations())
+    std::printf(" %d", it);
+  std::printf(", final residuals");
+  for (const auto& c : r.cases)
+    std::printf(" %.2g", c.residual);
+  std::printf("\n");
+  std::printf("asymmetry before symmetrizing %.3g, symmetry %s (tol %.1g), wall %.2f s\n",
+              r.asymmetry, lamina::materials::toString(r.symmetry.cls).c_str(), r.symmetry_tol,
+              r.wall_s);
+  printDispersion(e);
+  std::printf("added '%s' to %s\n", name.c_str(), library.c_str());
+}
+
+/// A choice of the command line: its names (in --help's and the error's
+/// order) and the value each one stands for. Parsed once, after CLI11's check.
+template <class E, std::size_t N>
+using Choices = std::array<std::pair<const char*, E>, N>;
+
+/// @return the names of @p choices, for CLI::IsMember
+template <class E, std::size_t N>
+std::vector<std::string> namesOf(const Choices<E, N>& choices) {
+  std::vector<std::string> names;
+  for (const auto& c : choices)
+    names.emplace_back(c.first);
+  return names;
+}
+
+/// @return the value of @p name (already checked by CLI::IsMember against namesOf(@p choices))
+template <class E, std::size_t N>
+E valueOf(const Choices<E, N>& choices, const std::string& name) {
+  for (const auto& c : choices)
+    if (name == c.first)
+      return c.second;
+  LAMINA_CHECK(false, "'", name, "' is not a choice of the command line");
+  return choices[0].second;
+}
+
+/// --fftw-plan: FFTW planning.
+enum class FftwPlan { Auto, Estimate, Measure };
+constexpr Choices<FftwPlan, 3> kPlans{
+    {{"auto", FftwPlan::Auto}, {"estimate", FftwPlan::Estimate}, {"measure", FftwPlan::Measure}}};
+
+/// --precision: precision of the preconditioner's FFTs (Auto: from --tol);
+/// single also makes the operator and the CG vectors float from --tol 1e-4
+/// up (homogenize::floatVectors).
+enum class PrecisionChoice { Auto, Single, Double };
+constexpr Choices<PrecisionChoice, 3> kPrecisions{{{"auto", PrecisionChoice::Auto},
+                                                   {"single", PrecisionChoice::Single},
+                                                   {"double", PrecisionChoice::Double}}};
+
+/// --estimate: how C is formed from the six solutions.
+constexpr Choices<lamina::homogenize::Estimate, 2> kEstimates{
+    {{"energy", lamina::homogenize::Estimate::Energy},
+     {"stress", lamina::homogenize::Estimate::Stress}}};
+
+/// @return the `measure` of homogenize::Options: 1 yes, 0 no, -1 auto
+int measureFlag(FftwPlan plan) {
+  return plan == FftwPlan::Auto ? -1 : plan == FftwPlan::Measure ? 1 : 0;
+}
+
+/// The command line, parsed: the choices as enums.
+struct Cli {
+  std::string cell_path, name, library, catalog, out;
+  bool json = false, overwrite = false, quiet = false;
+  int threads = 0, resolution = 0;
+  double tol = 1e-5, eta = 0.1;
+  FftwPlan plan = FftwPlan::Auto;
+  lamina::homogenize::Estimate estimate = lamina::homogenize::Estimate::Energy;
+  PrecisionChoice precision = PrecisionChoice::Auto;
+  bool path_given = false; ///< --path was on the command line
+  lamina::homogenize::PathSpec path;
+  lamina::homogenize::TangentSpec tangent;
+  std::vector<int> field_steps;
+
+  /// @return true for a nonlinear run (a strain path or rate-dependent tangents)
+  bool nonlinear() const { return path_given || !tangent.rates.empty(); }
+  /// @return true when the cell operator and the CG vectors run in float
+  /// (single-precision transforms and tol >= kFloatVectorsTol)
+  bool single() const {
+    const bool fft_single =
+        precision == PrecisionChoice::Single ||
+        (precision == PrecisionChoice::Auto &&
+         lamina::homogenize::autoPrecision(tol) == lamina::homogenize::Precision::Single);
+    return lamina::homogenize::floatVectors(fft_single ? lamina::homogenize::Precision::Single
+                                                       : lamina::homogenize::Precision::Double,
+                                            tol);
+  }
+};
+
+/// The strings CLI11 fills in; turned into the enums of Cli once, after parsing.
+struct CliNames {
+  std::string plan = "auto", estimate = "energy", precision = "auto", path;
+  CLI::Option* rate = nullptr; ///< --rate, to tell whether it was given
+  CLI::Option* to = nullptr;   ///< --to, likewise
+};
+
+/// Declares every option of the program on @p app, into @p cli and @p names.
+void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
+  app.add_option("cell", cli.cell_path, "cell file (TOML)")->required();
+  app.add_option(
+      "--name", cli.name,
+      "library entry name (with a J sweep: NAME-J<J>; with --tangent-rates: NAME-R<rate>)");
+  app.add_option("--library", cli.library, "library file (default: $LAMINA_LIBRARY, XDG data dir)");
+  app.add_flag("--json", cli.json, "print a JSON summary on stdout (one object per entry)");
+  app.add_option("--threads", cli.threads, "OpenMP and FFTW threads")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--tol", cli.tol, "relative residual per load case")->check(CLI::PositiveNumber);
+  app.add_option("--resolution", cli.resolution, "override the resolution: N^3 voxels")
+      ->check(CLI::Range(2, 4096));
+  app.add_option("--catalog", cli.catalog, "catalog file (default: $LAMINA_CATALOG or built-in)");
+  app.add_flag("--overwrite", cli.overwrite, "replace an existing entry of the same name");
+  app.add_option("--fftw-plan", names.plan,
+                 "FFTW planning: estimate, measure (wisdom cached in ~/.cache/lamina), "
+                 "auto (measure above 64^3)")
+      ->check(CLI::IsMember(namesOf(kPlans)));
+  app.add_option("--estimate", names.estimate,
+                 "C from the six solutions: energy (<eps_j:C:eps_k>, error quadratic in the "
+                 "residual, keeps 6 displacement fields) or stress (<sigma_k>, least memory)")
+      ->check(CLI::IsMember(namesOf(kEstimates)));
+  app.add_option("--precision", names.precision,
+                 "precision of the FFTs: auto (single when tol >= 1e-6), single, double; in "
+                 "single from tol 1e-4 up the operator and the CG vectors are float too")
+      ->check(CLI::IsMember(namesOf(kPrecisions)));
+  app.add_flag("--quiet", cli.quiet, "no progress line");
+  // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
+  app.add_option("--path", names.path,
+                 "nonlinear run: uniaxial-strain | shear | confined | uniaxial-stress (with "
+                 "--out, --rate and --to are required; with --tangent-rates: the path to "
+                 "--tangent-strain)")
+      ->check(CLI::IsMember(lamina::materials::drivePathNames()));
+  names.rate = app.add_option("--rate", cli.path.rate,
+                              "nonlinear: driven strain rate (1/s, 1e-12 to 1e12; required "
+                              "with --path ... --out)"); // range: materials::checkRate
+  names.to = app.add_option("--to", cli.path.to,
+                            "nonlinear: final driven strain (required with --path ... --out; "
+                            "confined: below 1)")
+                 ->check(CLI::PositiveNumber);
+  app.add_option("--steps", cli.path.steps, "nonlinear: load steps per leg (default 100)")
+      ->check(CLI::Range(1, 10000000));
+  app.add_flag("--unload", cli.path.unload, "nonlinear: back to zero strain at the same rate");
+  app.add_option("--out", cli.out, "nonlinear: history CSV (also OUT-phases.csv, OUT-fields.h5)");
+  app.add_option("--fields", cli.field_steps, "nonlinear: steps whose fields are written (XDMF)")
+      ->delimiter(',');
+  app.add_option("--eta", cli.eta, "nonlinear: CG forcing term per Newton step (default 0.1)")
+      ->check(CLI::Range(1e-12, 0.9));
+  app.add_option("--tangent-rates", cli.tangent.rates,
+                 "rates (1/s, 1e-12 to 1e12, inf allowed) of effective tangent entries "
+                 "NAME-R<rate>, added all or none")
+      ->delimiter(',');
+  app.add_option("--tangent-strain", cli.tangent.strain,
+                 "driven strain of the state of the tangent entries (default 0)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option(
+         "--tangent-increment", cli.tangent.increment,
+         "strain increment a tangent is for, in (0, 1]: dt = increment / rate (default 1e-3)")
+      ->check(CLI::PositiveNumber);
+}
+
+/// Turns the checked strings of @p names into the enums of @p cli.
+void parseChoices(const CliNames& names, Cli& cli) {
+  cli.plan = valueOf(kPlans, names.plan);
+  cli.estimate = valueOf(kEstimates, names.estimate);
+  cli.precision = valueOf(kPrecisions, names.precision);
+  cli.path_given = !names.path.empty();
+  cli.path.path =
+      *lamina::materials::parseDrivePath(cli.path_given ? names.path : "uniaxial-strain");
+}
+
+/// The one rule of a strain path (as `materials drive`): a --path run
+/// (--out) needs --rate and --to; without one they would be ignored, so
+/// they are refused. Throws a CLI error (exit 2) naming the option.
+void checkPathOptions(const Cli& cli, const CliNames& names) {
+  const bool path_run = cli.path_given && !cli.out.empty();
+  if (path_run && names.rate->count() == 0)
+    throw CLI::RequiredError("--rate: a --path run needs --rate R (driven strain rate, 1/s)",
+                             CLI::ExitCodes::RequiredError);
+  if (path_run && names.to->count() == 0)
+    throw CLI::RequiredError("--to: a --path run needs --to S (final driven strain)",
+                             CLI::ExitCodes::RequiredError);
+  if (cli.path_given && cli.out.empty() && cli.tangent.rates.empty())
+    throw CLI::RequiredError("--out: a --path run needs --out FILE.csv (or --tangent-rates)",
+                             CLI::ExitCodes::RequiredError);
+  for (const CLI::Option* o : {names.rate, names.to}) {
+    if (o->count() == 0 || path_run)
+      continue;
+    throw CLI::ValidationError(
+        o->get_name() + (cli.path_given ? ": drives a --path run (with --out) only; tangent "
+                                          "entries take --tangent-rates and --tangent-strain"
+                                        : ": only with --path (a strain path run)"),
+        CLI::ExitCodes::ValidationError);
+  }
+}
+
+/// Checks the nonlinear arguments against @p spec before the cell is built:
+/// the rate and strain ranges, the tangent entry names, and that no output
+/// file replaces a non-regular file or an input of the run.
+void checkNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec) {
+  using namespace lamina;
+  if (cli.path_given && !cli.out.empty()) {
+    materials::checkRate(cli.path.rate, "--rate");
+    materials::checkFinalStrain(cli.path.path, cli.path.to, "--to");
+    std::vector<std::filesystem::path> inputs{
+        cli.cell_path, materials::Library::resolvePath(cli.library),
+        cli.catalog.empty() ? materials::Catalog::defaultPath()
+                            : std::filesystem::path(cli.catalog)};
+    if (spec.image)
+      inputs.push_back(spec.image->path);
+    for (const auto& f : homogenize::pathOutputs(cli.out, !cli.field_steps.empty()))
+      core::checkOutput(f, inputs, "--out");
+  }
+  if (!cli.tangent.rates.empty()) {
+    if (cli.name.empty())
+      throw Error("--tangent-rates needs --name NAME", {"", 0, "--name"});
+    homogenize::TangentSpec tangent = cli.tangent;
+    tangent.path = cli.path;
+    const materials::Library lib(materials::Library::resolvePath(cli.library));
+    homogenize::checkTangentSpec(cli.name, tangent, lib, cli.overwrite);
+  }
+}
+
+/// Refuses, before anything large is allocated, a grid of @p n voxels that
+/// does not fit in memory (docs/homogenize.md, Memory).
+void checkMemory(const Cli& cli, const lamina::micro::CellSpec& spec, const std::array<int, 3>& n,
+                 const lamina::homogenize::MpiSession& mpi) {
+  // per voxel three CG vectors (72 bytes in double, 36 in single precision),
+  // the FFT buffer, the phase index and with the energy estimate six
+  // displacement fields (a seventh in double for the dispersion sink when
+  // single), over the ranks; rank 0 also holds the whole phase map while it
+  // scatters it
+  const std::uint64_t voxels = static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
+                               static_cast<std::uint64_t>(n[2]);
+  const std::uint64_t field = cli.single() ? 12 : 24; // one displacement-like field
+  const std::uint64_t per_voxel =
+      4 + 4 * field + (cli.estimate == lamina::homogenize::Estimate::Energy ? 6 * field : 0) +
+      (spec.physical_size && cli.single() ? 24 : 0);
+  // a cell with a size also gets its dispersion tensor, formed on rank 0
+  // from the whole grid: the spectra h_hat of the six cases (6 x 3 complex
+  // doubles per mode of the half spectrum, 146 bytes per voxel), the FFT
+  // buffer and the density spectrum (32), the gathered displacement of a
+  // case when distributed (24)
+  const std::uint64_t dispersion_per_voxel =
+      spec.physical_size ? 180 + (mpi.ranks() > 1 ? 24 : 0) : 0;
+  lamina::core::requireMemory(
+      double(voxels * per_voxel / static_cast<std::uint64_t>(mpi.ranks()) +
+             (mpi.rank() == 0 ? (8 + dispersion_per_voxel) * voxels : 0)),
+      "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
+          std::to_string(n[2]) + " voxels",
+      {cli.cell_path, 0, cli.resolution > 0 ? "--resolution" : "cell.resolution"},
+      "run it distributed: mpirun -np N homogenize " + cli.cell_path +
+          " ... (each rank holds 1/N of the fields), or --estimate stress "
+          "--precision single with --tol 1e-4 or looser (52 bytes per voxel)");
+}
+
+/// Rank 0 builds the phase map of @p spec at @p n voxels; the others learn only its grid.
+lamina::micro::UnitCell buildCell(const lamina::micro::CellSpec& spec, const std::array<int, 3>& n,
+                                  lamina::homogenize::MpiSession& mpi) {
+  lamina::micro::UnitCell cell;
+  if (mpi.rank() == 0)
+    cell = lamina::micro::buildCell(spec, n);
+  double shape[6] = {static_cast<double>(cell.n[0]),
+                     static_cast<double>(cell.n[1]),
+                     static_cast<double>(cell.n[2]),
+                     cell.size[0],
+                     cell.size[1],
+                     cell.size[2]};
+  mpi.broadcast(shape, sizeof shape);
+  for (int d = 0; d < 3; ++d) {
+    cell.n[static_cast<std::size_t>(d)] = static_cast<int>(shape[d]);
+    cell.size[d] = shape[3 + d];
+  }
+  return cell;
+}
+
+/// The nonlinear cell along --path with its history in --out (serial).
+void runPath(const Cli& cli, const lamina::micro::CellSpec& spec,
+             const lamina::micro::UnitCell& cell, const lamina::homogenize::NonlinearOptions& nl) {
+  using namespace lamina;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto steps = homogenize::runPath(
+      spec, cell, cli.path, nl, cli.out, cli.field_steps, [&](const homogenize::StepResult& r) {
+        if (!cli.quiet)
+          std::fprintf(stderr,
+                       "step %d t %.4g s: E %.4g %.4g %.4g %.4g %.4g %.4g, Sigma %.4g %.4g "
+                       "%.4g %.4g %.4g %.4g MPa, newton %d krylov %d (%.2f s)\n",
+                       r.step, r.t, r.E[0], r.E[1], r.E[2], r.E[3], r.E[4], r.E[5],
+                       r.Sigma[0] / 1e6, r.Sigma[1] / 1e6, r.Sigma[2] / 1e6, r.Sigma[3] / 1e6,
+                       r.Sigma[4] / 1e6, r.Sigma[5] / 1e6, r.newton, r.krylov, r.wall_s);
+      });
+  int newton = 0, krylov = 0;
+  for (const auto& r : steps) {
+    newton += r.newton;
+    krylov += r.krylov;
+  }
+  std::printf("%zu steps of %s at %g /s on %d x %d x %d voxels: newton %d, krylov %d, "
+              "wall %.2f s; wrote %s\n",
+              steps.size(), materials::toString(cli.path.path), cli.path.rate, cell.n[0], cell.n[1],
+              cell.n[2], newton, krylov,
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+              cli.out.c_str());
+}
+
+/// The nonlinear run: the strain path (--path, --out) and/or the
+/// rate-dependent tangent entries (--tangent-rates) into the library.
+void runNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec,
+                  const lamina::micro::UnitCell& cell, const lamina::homogenize::MpiSession& mpi) {
+  using namespace lamina;
+  LAMINA_CHECK(mpi.ranks() == 1, "nonlinear runs are serial (no mpirun)");
+  homogenize::NonlinearOptions nl;
+  nl.tol = cli.tol;
+  nl.eta = cli.eta;
+  nl.threads = cli.threads;
+  nl.measure = measureFlag(cli.plan);
+  if (cli.path_given && !cli.out.empty())
+    runPath(cli, spec, cell, nl);
+  else if (cli.path_given && cli.tangent.rates.empty())
+    throw Error("a nonlinear run needs --out FILE.csv (or --tangent-rates)");
+  if (cli.tangent.rates.empty())
+    return;
+  if (cli.name.empty())
+    throw Error("--tangent-rates needs --name NAME");
+  homogenize::TangentSpec tangent = cli.tangent;
+  tangent.path = cli.path;
+  materials::Library lib(materials::Library::resolvePath(cli.library));
+  homogenize::addTangentEntries(
+      spec, cell, cli.name, tangent, nl, lib, cli.overwrite, [&](const materials::Material& m) {
+        std::printf("added '%s' to %s\n", m.name.c_str(), lib.path().string().c_str());
+      });
+}
+
+/// The linear homogenization into the library (distributed under mpirun).
+void runLinear(const Cli& cli, const lamina::micro::CellSpec& spec,
+               const lamina::micro::UnitCell& cell, const lamina::homogenize::MpiSession& mpi) {
+  using namespace lamina;
+  if (cli.name.empty())
+    throw Error("--name NAME is required");
+  materials::Library lib(materials::Library::resolvePath(cli.library));
+  homogenize::Options opt;
+  opt.tol = cli.tol;
+  opt.threads = cli.threads;
+  opt.measure = measureFlag(cli.plan);
+  opt.quiet = cli.quiet || mpi.rank() != 0;
+  opt.estimate = cli.estimate;
+  if (cli.precision != PrecisionChoice::Auto)
+    opt.precision = cli.precision == PrecisionChoice::Single ? homogenize::Precision::Single
+                                                             : homogenize::Precision::Double;
+  const homogenize::Distribution dist = homogenize::Distribution::world(homogenize::gridOf(cell));
+  homogenize::homogenizeIntoLibrary(
+      spec, cell, cli.name, opt, lib, cli.overwrite,
+      [&](const homogenize::EntryResult& e) {
+        if (cli.json)
+          std::cout << homogenize::toJson(e).dump() << std::endl;
+        else
+          printHuman(e, cell, lib.path().string());
+      },
+      &dist);
+}
+
+/// The method: check the options, read the cell, size it, build it, run.
+void run(Cli& cli, lamina::homogenize::MpiSession& mpi) {
+  using namespace lamina;
+  if (!cli.name.empty()) // a nonlinear run without a library entry has none
+    core::checkName(cli.name, "entry name", {"", 0, "--name"});
+  core::checkThreads(cli.threads, "--threads");
+  const micro::CellSpec spec = micro::readCell(cli.cell_path, micro::lazyCatalog(cli.catalog));
+  std::array<int, 3> n = spec.resolution;
+  if (cli.resolution > 0)
+    n = {cli.resolution, cli.resolution, cli.resolution};
+  if (cli.nonlinear())
+    checkNonlinear(cli, spec);
+  checkMemory(cli, spec, n, mpi);
+  const micro::UnitCell cell = buildCell(spec, n, mpi);
+  if (cli.nonlinear())
+    runNonlinear(cli, spec, cell, mpi);
+  else
+    runLinear(cli, spec, cell, mpi);
+}
+
+} // namespace
+
+namespace lamina::homogenize {
+
+int runProgram(int argc, char** argv, MpiSession& mpi, UnexpectedErrors unexpected) {
+  CLI::App app{"homogenize: effective stiffness and density of a voxel unit cell "
+               "(mpirun -np N homogenize ... runs it over N MPI ranks)"};
+  Cli cli;
+  CliNames names;
+  addOptions(app, cli, names);
+  try {
+    app.parse(argc, argv);
+    parseChoices(names, cli);
+    checkPathOptions(cli, names);
+  } catch (const CLI::ParseError& e) {
+    // every rank parses the same arguments: one prints
+    if (mpi.rank() != 0)
+      return e.get_exit_code() == 0 ? 0 : lamina::kExitUsage;
+    return app.exit(e) == 0 ? 0 : lamina::kExitUsage;
+  }
+  try {
+    run(cli, mpi);
+  } catch (const lamina::DivergenceError& e) {
+    std::fprintf(stderr, "homogenize: %s\n", e.what());
+    return mpi.abort(lamina::kExitDivergence);
+  } catch (const lamina::Error& e) {
+    std::fprintf(stderr, "homogenize: %s\n", e.what());
+    return mpi.abort(lamina::kExitUserError);
+  } catch (const std::exception& e) {
+    if (unexpected == UnexpectedErrors::Rethrow)
+      throw;
+    std::fprintf(stderr, "homogenize: %s\n", e.what());
+    return mpi.abort(lamina::kExitUserError);
+  } catch (...) {
+    if (unexpected == UnexpectedErrors::Rethrow)
+      throw;
+    std::fprintf(stderr, "homogenize: unexpected error (not a std::exception)\n");
+    return mpi.abort(lamina::kExitUserError);
+  }
+  return 0;
+}
+
+} // namespace lamina::homogenize

@@ -1,0 +1,351 @@
+/// @file cli.cpp
+/// @brief The `materials` program: list, show, add, layup, export, remove, drive.
+
+#include "materials/cli.hpp"
+
+#include "core/atomic_file.hpp"
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "materials/catalog.hpp"
+#include "materials/export.hpp"
+#include "materials/layup.hpp"
+#include "materials/library.hpp"
+#include "materials/material_source.hpp"
+#include "materials/point_driver.hpp"
+#include "materials/symmetry.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <ctime>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace mat = lamina::materials;
+
+namespace {
+
+/// @return the --format names of mat::exportFormats(), for CLI::IsMember
+std::vector<std::string> formatNames() {
+  std::vector<std::string> names;
+  for (const auto& f : mat::exportFormats())
+    names.emplace_back(f.first);
+  return names;
+}
+
+std::string nowIso() {
+  const std::time_t t = std::time(nullptr);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+void printHuman(const mat::Material& m) {
+  const mat::Symmetry s = mat::classify(m.C);
+  const mat::EngineeringConstants e = m.C.engineering();
+  auto g = [](double x) { return lamina::core::formatShort(x, 6); };
+  std::cout << m.name << "  (" << m.kind << ")\n"
+            << "  density   " << g(m.density) << " kg/m^3\n";
+  if (m.thickness)
+    std::cout << "  thickness " << g(*m.thickness) << " m\n";
+  std::cout << "  symmetry  " << mat::toString(s.cls)
+            << (s.axis >= 0 ? std::string(" (axis ") + "xyz"[s.axis] + ")" : "")
+            << ", anisotropy index A^U = " << g(mat::anisotropyIndex(m.C)) << "\n"
+            << "  C (GPa, lamina order xx yy zz xy yz xz):\n";
+  for (int i = 0; i < 6; ++i) {
+    std::cout << "   ";
+    for (int j = 0; j < 6; ++j) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, " %11.5g", m.C(i, j) / 1e9);
+      std::cout << buf;
+    }
+    std::cout << "\n";
+  }
+  std::cout << "  E1 " << g(e.E1) << "  E2 " << g(e.E2) << "  E3 " << g(e.E3) << " Pa\n"
+            << "  G12 " << g(e.G12) << "  G23 " << g(e.G23) << "  G13 " << g(e.G13) << " Pa\n"
+            << "  nu12 " << g(e.nu12) << "  nu13 " << g(e.nu13) << "  nu23 " << g(e.nu23) << "\n";
+  if (m.cell_size)
+    std::cout << "  cell size " << g((*m.cell_size)[0]) << " x " << g((*m.cell_size)[1]) << " x "
+              << g((*m.cell_size)[2]) << " m\n";
+  if (m.dispersion) {
+    std::cout << "  dispersion zeta^2 D (kg/m, lamina order; micro-inertia, eq. 35):\n";
+    for (int i = 0; i < 6; ++i) {
+      std::cout << "   ";
+      for (int j = 0; j < 6; ++j) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, " %11.4g", (*m.dispersion)(i, j));
+        std::cout << buf;
+      }
+      std::cout << "\n";
+    }
+    // omega^2 = c^2 k^2 / (1 + l^2 k^2) for a wave straining component I alone
+    const auto l = mat::dispersionLengths(m);
+    std::cout << "  characteristic length sqrt(zeta^2 D_II / rho) (m): xx " << g(l[0]) << "  yy "
+              << g(l[1]) << "  zz " << g(l[2]) << "  xy " << g(l[3]) << "  yz " << g(l[4])
+              << "  xz " << g(l[5]) << "\n";
+  }
+  for (const mat::Ply& p : m.plies)
+    std::cout << "  ply " << p.material << " at " << g(p.angle_deg) << " deg, " << g(p.thickness)
+              << " m\n";
+  if (!m.side_file.empty())
+    std::cout << "  side file " << m.side_file << "\n";
+  if (!m.provenance.empty()) {
+    std::cout << "  provenance:\n";
+    for (const auto& [k, v] : m.provenance) {
+      std::ostringstream os;
+      v.visit([&os](const auto& x) { os << x; });
+      std::string text = os.str();
+      if (text.size() > 100)
+        text = text.substr(0, 97) + "...";
+      std::cout << "    " << k.str() << " = " << text << "\n";
+    }
+  }
+}
+
+std::array<double, 21> parseConstants(const std::string& text) {
+  std::array<double, 21> v{};
+  std::stringstream ss(text);
+  std::string item;
+  std::size_t n = 0;
+  while (std::getline(ss, item, ',')) {
+    if (n >= 21)
+      throw lamina::Error("expected exactly 21 comma-separated constants", {"--constants", 0, ""});
+    char* end = nullptr;
+    v[n] = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0')
+      throw lamina::Error("constant " + std::to_string(n + 1) + " ('" + item + "') is not a number",
+                          {"--constants", 0, ""});
+    ++n;
+  }
+  if (n != 21)
+    throw lamina::Error("expected exactly 21 comma-separated constants, got " + std::to_string(n),
+                        {"--constants", 0, ""});
+  return v;
+}
+
+/// The command line, parsed (every subcommand's options).
+struct Args {
+  std::string library, catalog; ///< --library, --catalog
+  std::string name;             ///< NAME of show, add, layup, export, remove, drive
+  std::string format = "json", from_catalog, constants;
+  std::string path_name = "uniaxial-strain", out, kinematics = "finite";
+  bool list_catalog = false, json = false, overwrite = false;
+  double density = 0;
+  std::vector<std::string> plies;
+  mat::DriveOptions drive;
+
+  /// @return the catalog file: --catalog, else the default
+  std::filesystem::path catalogFile() const {
+    return catalog.empty() ? mat::Catalog::defaultPath() : std::filesystem::path(catalog);
+  }
+};
+
+/// The subcommands, to tell which one was given.
+struct Commands {
+  CLI::App *list, *show, *add, *layup, *export_card, *remove, *drive;
+};
+
+/// Declares `drive` and its options on @p app, into @p a.
+CLI::App* addDriveCommand(CLI::App& app, Args& a) {
+  auto* cmd = app.add_subcommand(
+      "drive", "drive one material point along a strain path at a constant rate (CSV)");
+  cmd->add_option("NAME", a.name, "library entry or catalog material")->required();
+  cmd->add_option("--path", a.path_name, "uniaxial-stress | uniaxial-strain | shear | confined")
+      ->check(CLI::IsMember(mat::drivePathNames()));
+  cmd->add_option("--rate", a.drive.rate, "driven strain rate (1/s, 1e-12 to 1e12; required)")
+      ->required(); // range checked by checkRate (the same rule as homogenize)
+  cmd->add_option("--to", a.drive.to,
+                  "final driven strain (required; confined: compression, below 1)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--unload", a.drive.unload, "drive back to zero strain at the same rate");
+  cmd->add_option("--steps", a.drive.steps, "time steps per leg (default 200)")
+      ->check(CLI::Range(1, 100000000));
+  cmd->add_option("--kinematics", a.kinematics,
+                  "finite (rotation-free frame, J = det F; default) | small")
+      ->check(CLI::IsMember({"finite", "small"}));
+  cmd->add_option("--out", a.out, "CSV file to write")->required();
+  cmd->add_option("--library", a.library, "library file (as before the subcommand)");
+  return cmd;
+}
+
+/// Declares every subcommand and option on @p app, into @p a.
+Commands addCommands(CLI::App& app, Args& a) {
+  app.require_subcommand(1);
+  app.add_option(
+      "--library", a.library,
+      "library file (default: $LAMINA_LIBRARY, else ~/.local/share/lamina/library.toml)");
+  app.add_option("--catalog", a.catalog, "catalog file (default: the source tree's)");
+  Commands c{};
+  c.list = app.add_subcommand("list", "list the library entries");
+  c.list->add_flag("--catalog-entries", a.list_catalog,
+                   "list the catalog's base materials instead");
+  c.show = app.add_subcommand("show", "show one entry");
+  c.show->add_option("NAME", a.name, "entry name")->required();
+  c.show->add_flag("--json", a.json, "print one JSON object");
+  c.add = app.add_subcommand("add", "add an entry from the catalog or from 21 constants");
+  c.add->add_option("NAME", a.name, "new entry name")->required();
+  auto* from = c.add->add_option("--from-catalog", a.from_catalog, "catalog key");
+  auto* constants = c.add->add_option(
+      "--constants", a.constants, "C11,C12,...,C66: upper triangle row by row, lamina order, Pa");
+  c.add->add_option("--density", a.density, "kg/m^3 (required with --constants)");
+  c.add->add_flag("--overwrite", a.overwrite, "replace an existing entry of that name");
+  from->excludes(constants);
+  c.layup = app.add_subcommand("layup", "store a layup of plies as a new entry");
+  c.layup->add_option("NAME", a.name, "new entry name")->required();
+  c.layup->add_option("--ply", a.plies, "MATERIAL:ANGLE_DEG:THICKNESS_M (repeat, bottom to top)")
+      ->required()
+      ->allow_extra_args(false); // one value per flag, so a positional may follow
+  c.layup->add_flag("--overwrite", a.overwrite, "replace an existing entry of that name");
+  c.export_card = app.add_subcommand("export", "print a card for another code");
+  c.export_card->add_option("NAME", a.name, "entry name")->required();
+  c.export_card
+      ->add_option("--format", a.format, "abaqus | calculix | lsdyna | lsdyna-small | json")
+      ->check(CLI::IsMember(formatNames()));
+  c.remove = app.add_subcommand("remove", "remove an entry");
+  c.remove->add_option("NAME", a.name, "entry name")->required();
+  c.drive = addDriveCommand(app, a);
+  return c;
+}
+
+/// `list`: the library's entries, or the catalog's materials.
+void listEntries(const Args& a, const std::filesystem::path& library) {
+  if (a.list_catalog) {
+    const mat::Catalog cat(a.catalogFile());
+    for (const auto& n : cat.names())
+      std::cout << n << "  " << cat.get(n).description << "\n";
+    return;
+  }
+  const mat::Library lib(library);
+  for (const auto& n : lib.names()) {
+    const auto& m = lib.get(n);
+    std::cout << n << "  " << m.kind << "  " << mat::toString(mat::classify(m.C).cls) << "\n";
+  }
+}
+
+/// `add`: the new entry, from the catalog or from 21 constants.
+mat::Material newEntry(const Args& a) {
+  mat::Material m;
+  if (!a.from_catalog.empty()) {
+    m = mat::Catalog(a.catalogFile()).get(a.from_catalog).toMaterial();
+    m.provenance.insert("catalog_key", a.from_catalog);
+  } else if (!a.constants.empty()) {
+    if (!(a.density > 0))
+      throw lamina::Error(a.density == 0 ? "--density (kg/m^3) is required with --constants"
+                                         : "density must be > 0 (kg/m^3)",
+                          {"--density", 0, ""});
+    m.C = mat::Stiffness::fromUpperTriangle(parseConstants(a.constants));
+    m.density = a.density;
+    m.kind = "constants";
+    m.provenance.insert("input", a.constants);
+  } else {
+    throw lamina::Error("give --from-catalog KEY or --constants C11,...,C66", {"add", 0, ""});
+  }
+  m.name = a.name;
+  m.provenance.insert("tool", "materials add");
+  m.provenance.insert("version", LAMINA_VERSION);
+  m.provenance.insert("time", nowIso());
+  return m;
+}
+
+/// `layup`: the plies stacked into a new entry of @p library.
+void addLayup(const Args& a, const std::filesystem::path& library) {
+  std::vector<mat::Ply> stack;
+  for (const auto& p : a.plies)
+    stack.push_back(mat::parsePly(p));
+  mat::MaterialSource source(library.string(), a.catalog);
+  mat::Material m =
+      mat::makeLayup(a.name, stack, [&](const std::string& n) { return source.get(n); });
+  m.provenance.insert("tool", "materials layup");
+  m.provenance.insert("version", LAMINA_VERSION);
+  m.provenance.insert("time", nowIso());
+  mat::Library(library).add(m, a.overwrite);
+  std::cerr << "added layup '" << a.name << "' (" << stack.size() << " plies, "
+            << lamina::core::formatShort(*m.thickness) << " m) to " << library.string() << "\n";
+}
+
+/// `drive`: the rate, the strain and the output checked before anything is
+/// computed, then the point driven and its CSV written.
+void driveEntry(Args a, const std::filesystem::path& library) {
+  a.drive.path = *mat::parseDrivePath(a.path_name);
+  a.drive.kinematics = a.kinematics == "small" ? mat::Kinematics::Small : mat::Kinematics::Finite;
+  mat::checkRate(a.drive.rate, "--rate");
+  mat::checkFinalStrain(a.drive.path, a.drive.to, "--to");
+  // never over a device, a FIFO, a directory, nor over the library or the catalog
+  lamina::core::checkOutput(a.out, {library, a.catalogFile()}, "--out");
+  mat::MaterialSource source(library.string(), a.catalog);
+  const mat::LawPtr law = source.law(a.name);
+  const std::vector<mat::DriveRow> rows = mat::drive(*law, a.drive);
+  mat::writeDriveCsv(a.out, rows);
+  std::cerr << "drove '" << a.name << "' (" << mat::toString(law->kind()) << ") along "
+            << a.path_name << " at " << a.drive.rate << " /s to " << a.drive.to << ": "
+            << rows.size() << " rows in " << a.out << "\n";
+}
+
+/// Runs the subcommand of @p c that was given.
+void runCommand(const Commands& c, const Args& a) {
+  const auto path = mat::Library::resolvePath(a.library);
+  if (c.list->parsed()) {
+    listEntries(a, path);
+  } else if (c.show->parsed()) {
+    const mat::Library lib(path);
+    if (a.json)
+      std::cout << mat::materialToJson(lib.get(a.name)).dump(2) << "\n";
+    else
+      printHuman(lib.get(a.name));
+  } else if (c.add->parsed()) {
+    mat::Library(path).add(newEntry(a), a.overwrite);
+    std::cerr << "added '" << a.name << "' to " << path.string() << "\n";
+  } else if (c.layup->parsed()) {
+    addLayup(a, path);
+  } else if (c.export_card->parsed()) {
+    const mat::Library lib(path);
+    std::cout << mat::exportCard(lib.get(a.name), mat::parseExportFormat(a.format));
+  } else if (c.drive->parsed()) {
+    driveEntry(a, path);
+  } else if (c.remove->parsed()) {
+    mat::Library(path).remove(a.name);
+    std::cerr << "removed '" << a.name << "' from " << path.string() << "\n";
+  }
+}
+
+} // namespace
+
+namespace lamina::materials {
+
+int runProgram(int argc, char** argv, UnexpectedErrors unexpected) {
+  CLI::App app{"lamina materials library: list, show, add, layup, export, remove.\n"
+               "Stiffness in Pa, lamina order [xx, yy, zz, xy, yz, xz], engineering shear."};
+  Args args;
+  const Commands commands = addCommands(app, args);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) // --help: CLI11 prints the help text
+      return app.exit(e);
+    // One line on stderr (CLI11's default adds a second "Run with --help" line).
+    std::cerr << "materials: error: " << e.what() << " (see --help)\n";
+    return lamina::kExitUsage;
+  }
+  try {
+    runCommand(commands, args);
+  } catch (const lamina::Error& e) {
+    std::cerr << "materials: error: " << e.what() << "\n";
+    return lamina::kExitUserError;
+  } catch (const std::exception& e) {
+    if (unexpected == UnexpectedErrors::Rethrow)
+      throw;
+    std::cerr << "materials: error: " << e.what() << "\n";
+    return lamina::kExitUserError;
+  } catch (...) {
+    if (unexpected == UnexpectedErrors::Rethrow)
+      throw;
+    std::cerr << "materials: error: unexpected error (not a std::exception)\n";
+    return lamina::kExitUserError;
+  }
+  return 0;
+}
+
+} // namespace lamina::materials
