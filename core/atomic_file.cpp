@@ -1,4 +1,5 @@
 #include "core/atomic_file.hpp"
+#include "core/input_file.hpp"
 
 #include "core/error.hpp"
 
@@ -14,21 +15,6 @@ namespace lamina::core {
 namespace {
 [[noreturn]] void sysFail(const std::string& what, const std::filesystem::path& p) {
   throw Error(what + ": " + std::strerror(errno), {p.string(), 0, ""});
-}
-
-/// @return what a file of mode @p mode is, for messages
-const char* fileKind(mode_t mode) {
-  if (S_ISDIR(mode))
-    return "a directory";
-  if (S_ISFIFO(mode))
-    return "a FIFO";
-  if (S_ISCHR(mode))
-    return "a character device";
-  if (S_ISBLK(mode))
-    return "a block device";
-  if (S_ISSOCK(mode))
-    return "a socket";
-  return "not a regular file";
 }
 
 void fsyncDirectory(const std::filesystem::path& file) {
@@ -70,7 +56,7 @@ void checkReplaceable(const std::filesystem::path& path, const std::string& opti
   if (::stat(path.c_str(), &st) != 0) // absent, or a link to nothing yet
     return;
   if (!S_ISREG(st.st_mode))
-    throw Error(std::string("refusing to write over ") + fileKind(st.st_mode) +
+    throw Error(std::string("refusing to write over ") + fileKindName(st.st_mode) +
                     ": an output replaces only a regular file",
                 {path.string(), 0, option});
 }

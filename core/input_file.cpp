@@ -10,10 +10,7 @@
 
 namespace lamina::core {
 
-namespace {
-
-/// @return what a file of mode @p mode is, when it is not a regular file
-const char* kindOf(mode_t mode) {
+const char* fileKindName(mode_t mode) {
   if (S_ISFIFO(mode))
     return "a FIFO (named pipe)";
   if (S_ISCHR(mode))
@@ -27,8 +24,6 @@ const char* kindOf(mode_t mode) {
   return "not a regular file";
 }
 
-} // namespace
-
 InputFile::InputFile(const std::filesystem::path& path, const std::string& what,
                      std::uintmax_t max_bytes, ErrorContext where)
     : path_(path), what_(what), max_bytes_(max_bytes), where_(std::move(where)) {
@@ -38,7 +33,7 @@ InputFile::InputFile(const std::filesystem::path& path, const std::string& what,
   if (::stat(path_.c_str(), &st) != 0)
     fail(std::string("cannot be opened: ") + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
-    fail(std::string("is ") + kindOf(st.st_mode) + ", not a regular file; refusing to read it");
+    fail(std::string("is ") + fileKindName(st.st_mode) + ", not a regular file; refusing to read it");
   do
     fd_ = ::open(path_.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
   while (fd_ < 0 && errno == EINTR);
@@ -48,7 +43,7 @@ InputFile::InputFile(const std::filesystem::path& path, const std::string& what,
   if (::fstat(fd_, &st) != 0)
     fail(std::string("cannot be read: ") + std::strerror(errno));
   if (!S_ISREG(st.st_mode))
-    fail(std::string("is ") + kindOf(st.st_mode) + ", not a regular file; refusing to read it");
+    fail(std::string("is ") + fileKindName(st.st_mode) + ", not a regular file; refusing to read it");
   size_ = static_cast<std::uintmax_t>(st.st_size);
   if (size_ > max_bytes_)
     fail("of " + std::to_string(size_) + " bytes exceeds the limit of " +

@@ -16,11 +16,17 @@
 
 #include "core/error.hpp"
 
+#include <sys/types.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
 
 namespace lamina::core {
+
+/// @return what a file of mode @p mode (from stat) is, for messages, when it
+/// is not a regular file: "a FIFO (named pipe)", "a directory", ...
+const char* fileKindName(mode_t mode);
 
 /// Largest CSV table read (bytes): a pressure history of a million rows fits.
 inline constexpr std::uintmax_t kMaxTableBytes = 64u << 20;
