@@ -1,5 +1,7 @@
 #include "core/hdf5_file.hpp"
 
+#include "core/atomic_file.hpp"
+
 #include "core/error.hpp"
 #include "core/input_file.hpp"
 
@@ -49,6 +51,8 @@ H5File::H5File(const std::filesystem::path& path, Mode mode) : path_(path) {
   hid_t id = -1;
   if (mode != Mode::Create) // HDF5 would block on a FIFO and read a device
     checkRegularInput(path, "HDF5 file", kMaxHdf5Bytes);
+  else // and truncate a device, or block on a FIFO, that stands where it creates
+    checkReplaceable(path);
   switch (mode) {
   case Mode::Create:
     id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);

@@ -132,7 +132,8 @@ void writeMatrix6(std::ostream& os, const char* k, const Matrix6& c) {
 /// Permission bits of side files and of the side folder.
 struct FileModes {
   mode_t file = 0644;   ///< a side file's: those of the library
-  mode_t folder = 0755; ///< the side folder's at most: the library's, x where r
+  mode_t folder = 0755; ///< the side folder's at most: rwx for the owner (who
+                        ///< writes in it), the library's bits for the others, x where r
 };
 
 /// @return the modes of the side files of the library at @p library (a new
@@ -142,7 +143,9 @@ FileModes sideModes(const std::filesystem::path& library) {
   FileModes m;
   if (::stat(library.c_str(), &st) == 0)
     m.file = st.st_mode & 0666;
-  m.folder = m.file | ((m.file & 0444) >> 2); // r -> r-x
+  // the owner always keeps rwx (a 0444 library must still take new entries);
+  // group and others get the library's bits, x where r
+  m.folder = 0700 | (m.file & 0066) | ((m.file & 0044) >> 2);
   return m;
 }
 
@@ -172,8 +175,9 @@ public:
   std::string open(const std::string& name) {
     std::filesystem::create_directories(folder_);
     struct stat st {};
-    if (::stat(folder_.c_str(), &st) == 0 && (st.st_mode & 07777 & ~modes_.folder) != 0)
-      ::chmod(folder_.c_str(), st.st_mode & 07777 & modes_.folder); // no more open than the library
+    if (::stat(folder_.c_str(), &st) == 0 &&
+        (st.st_mode & 07777) != ((st.st_mode & 07777 & modes_.folder) | 0700))
+      ::chmod(folder_.c_str(), (st.st_mode & 07777 & modes_.folder) | 0700); // no more open than the library
     std::string tmpl = (folder_ / (std::string(kStagePrefix) + "XXXXXX")).string();
     if (!::mkdtemp(tmpl.data()))
       throw Error("cannot create a temporary folder for side files", {folder_.string(), 0, ""});

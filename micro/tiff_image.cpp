@@ -115,11 +115,13 @@ void checkStrips(TIFF* t, const ImageSource& src, int page, std::uint64_t bytes)
 }
 
 /// The pages a stack declares on page 0 (PageNumber tag, or ImageJ's
-/// "images=N" description); 0 when it declares none.
-std::uint64_t declaredPages(TIFF* t) {
+/// "images=N" description); 0 when it declares none. PageNumber's total is a
+/// 16-bit field: a stack of 65,536 pages or more cannot state its count there
+/// (lamina's writer leaves it out), so such a total is taken as unknown.
+std::uint64_t declaredPages(TIFF* t, std::uint64_t count) {
   std::uint16_t page = 0, total = 0;
   if (TIFFGetField(t, TIFFTAG_PAGENUMBER, &page, &total) == 1 && total > 0)
-    return total;
+    return count > 0xffff ? 0 : total;
   char* text = nullptr;
   if (TIFFGetField(t, TIFFTAG_IMAGEDESCRIPTION, &text) == 1 && text &&
       std::strncmp(text, "ImageJ=", 7) == 0)
@@ -139,8 +141,8 @@ struct Stack {
 Stack scanStack(TIFF* t, const ImageSource& src, std::uint64_t bytes) {
   Stack s;
   s.first = pageOf(t, src, 0);
-  const std::uint64_t declared = declaredPages(t);
   const tdir_t count = TIFFNumberOfDirectories(t);
+  const std::uint64_t declared = declaredPages(t, count);
   if (count > 1000000)
     imageError(src, std::to_string(count) + " pages; at most 1000000 are read");
   for (tdir_t z = 0; z < count; ++z) {
@@ -223,8 +225,9 @@ void writeTiffImage(const VoxelImage& image, const std::filesystem::path& path) 
       TIFFSetField(t.get(), TIFFTAG_COMPRESSION, static_cast<std::uint16_t>(COMPRESSION_NONE));
       TIFFSetField(t.get(), TIFFTAG_ROWSPERSTRIP, static_cast<std::uint32_t>(image.n[1]));
       TIFFSetField(t.get(), TIFFTAG_SUBFILETYPE, static_cast<std::uint32_t>(FILETYPE_PAGE));
-      TIFFSetField(t.get(), TIFFTAG_PAGENUMBER, static_cast<std::uint16_t>(z),
-                   static_cast<std::uint16_t>(image.n[2]));
+      if (image.n[2] <= 0xffff) // PageNumber is 16-bit: no count rather than a wrapped one
+        TIFFSetField(t.get(), TIFFTAG_PAGENUMBER, static_cast<std::uint16_t>(z),
+                     static_cast<std::uint16_t>(image.n[2]));
       for (int y = 0; y < image.n[1]; ++y) {
         for (int x = 0; x < image.n[0]; ++x) {
           const std::int32_t v =

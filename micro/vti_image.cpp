@@ -16,6 +16,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -48,6 +49,24 @@ struct VtiDoc {
   int current = -1;
   std::string error;
 };
+
+/// @return the decimal integer @p v (digits only, no sign, no trailing text)
+/// when it is at most @p max; else records in @p d which attribute of which
+/// array is not one (strtoull took "-5" as 2^64 - 5 and "x" as 0, atoi
+/// "4294967297" as 1) and @return 0
+std::uint64_t strictCount(VtiDoc& d, const char* v, const char* key, const std::string& array,
+                          std::uint64_t max) {
+  errno = 0;
+  char* end = nullptr;
+  const unsigned long long x = std::strtoull(v, &end, 10);
+  if (v[0] < '0' || v[0] > '9' || *end != '\0' || errno == ERANGE || x > max) {
+    if (d.error.empty())
+      d.error = "array '" + array + "': " + key + " = '" + v + "' is not an integer from 0 to " +
+                std::to_string(max);
+    return 0;
+  }
+  return x;
+}
 
 const char* attr(const XML_Char** a, const char* name) {
   for (int i = 0; a[i]; i += 2)
@@ -93,9 +112,9 @@ void XMLCALL onStart(void* data, const XML_Char* name, const XML_Char** a) {
       arr.type = v;
     arr.format = attr(a, "format") ? attr(a, "format") : "ascii";
     if (const char* v = attr(a, "offset"))
-      arr.offset = std::strtoull(v, nullptr, 10);
+      arr.offset = strictCount(d, v, "offset", arr.name, std::uint64_t{1} << 62);
     if (const char* v = attr(a, "NumberOfComponents"))
-      arr.components = std::atoi(v);
+      arr.components = static_cast<int>(strictCount(d, v, "NumberOfComponents", arr.name, 1 << 20));
     d.arrays.push_back(arr);
     d.current = static_cast<int>(d.arrays.size()) - 1;
   } else if (n == "AppendedData") {
@@ -156,6 +175,8 @@ Parsed parse(const ImageSource& src) {
             ": " + XML_ErrorString(XML_GetErrorCode(parser.get())) +
             (XML_GetErrorCode(parser.get()) == XML_ERROR_NO_ELEMENTS ? " (truncated file?)" : ""));
   const VtiDoc& d = p.doc;
+  if (!d.error.empty())
+    imageError(src, d.error);
   if (d.file_type != "ImageData")
     imageError(src, "VTKFile type is '" + d.file_type + "'; a voxel image needs ImageData");
   if (!d.have_extent)
@@ -407,6 +428,9 @@ VoxelImage readVtiImage(const ImageSource& src) {
     } else if (a.format == "appended") {
       if (p.appended == std::string::npos)
         imageError(src, "array '" + a.name + "' is appended but the file has no AppendedData");
+      if (a.offset > p.appended_end - p.appended) // compared, not added: no wrap-around
+        imageError(src, "truncated .vti file: array '" + a.name + "' starts at offset " +
+                            std::to_string(a.offset) + " beyond the appended data");
       const std::size_t at = p.appended + a.offset;
       if (at > p.appended_end)
         imageError(src, "truncated .vti file: array '" + a.name + "' starts at offset " +

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 namespace lamina::membrane {
@@ -153,8 +154,17 @@ void FieldWriter::writeIndex() const {
   core::writeFileAtomically(xdmf_path_, x.str());
 }
 
+namespace {
+/// @return @p part once core::checkReplaceable() accepts it (a FIFO standing
+/// where a table is written blocked the run in its open; a device was written)
+std::string replaceablePart(const std::filesystem::path& part) {
+  core::checkReplaceable(part);
+  return part.string();
+}
+} // namespace
+
 CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& header)
-    : path_(path), out_(path.string() + ".part") {
+    : path_(path), out_(replaceablePart(path.string() + ".part")) {
   if (!out_)
     throw Error("cannot write", ErrorContext{path.string() + ".part", 0, ""});
   out_ << header << '\n';
@@ -201,7 +211,10 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, const std::string& heade
   const ErrorContext where{part.string(), 0, ""};
   std::string first;
   {
-    core::checkRegularInput(part, "table being continued", core::kMaxTableBytes);
+    // the run's own table: a regular file, of any size (only its first line
+    // and the checkpoint's byte count are read)
+    core::checkRegularInput(part, "table being continued",
+                            std::numeric_limits<std::uintmax_t>::max());
     std::ifstream in(part);
     std::getline(in, first);
   }

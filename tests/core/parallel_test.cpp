@@ -16,12 +16,14 @@
 namespace core = lamina::core;
 
 TEST(ParallelErrors, FirstExceptionLeavesTheRegionWithItsTypeAndMessage) {
-  omp_set_num_threads(4);
   for (const int bad_every : {1, 7, 1000}) { // every item, some, one
     core::ParallelErrors errors;
     int after = 0; // the region's own code after the loop still runs
-#pragma omp parallel
+    int team = 0;
+#pragma omp parallel num_threads(4) // a team of its own: the global setting stays
     {
+#pragma omp single
+      team = omp_get_num_threads();
 #pragma omp for schedule(dynamic, 1)
       for (int i = 0; i < 1000; ++i)
         errors.run([&] {
@@ -31,7 +33,7 @@ TEST(ParallelErrors, FirstExceptionLeavesTheRegionWithItsTypeAndMessage) {
 #pragma omp atomic
       ++after;
     }
-    EXPECT_EQ(after, omp_get_max_threads());
+    EXPECT_EQ(after, team);
     EXPECT_TRUE(errors.failed());
     try {
       errors.rethrow();

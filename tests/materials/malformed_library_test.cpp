@@ -285,7 +285,7 @@ TEST(LibraryTransactions, SeveralEntriesAreAddedAllOrNone) {
 // issue: 0644 side files under a 0600 library).
 TEST(LibrarySideFiles, SideFilesTakeTheLibrarysMode) {
   for (const auto& [lib_mode, folder_mode] :
-       std::vector<std::pair<mode_t, mode_t>>{{0600, 0700}, {0640, 0750}}) {
+       std::vector<std::pair<mode_t, mode_t>>{{0600, 0700}, {0640, 0750}, {0444, 0755}}) {
     TempDir dir;
     const auto path = dir / "lib.toml";
     mat::Library(path).add(iso("a", 1000));

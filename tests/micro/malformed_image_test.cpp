@@ -183,6 +183,35 @@ TEST(TruncatedImages, VtiHugeByteCountIsTruncationNotOverflow) {
   EXPECT_NE(msg.find("big.vti"), std::string::npos) << msg;
 }
 
+// A VTI's integer attributes are read strictly: NumberOfComponents =
+// "4294967297" was 1 (atoi), offset = "-5" wrapped to 2^64 - 5 and "x" was 0.
+// Each is refused naming the image and the attribute.
+TEST(TruncatedImages, VtiAttributesAreIntegersNotWrapped) {
+  TempDir dir;
+  writeImage(pattern(), dir / "v.vti", ImageFormat::Vti);
+  const std::string text = test::readFile(dir / "v.vti");
+  const std::size_t da = text.find("<DataArray");
+  ASSERT_NE(da, std::string::npos);
+  const std::size_t off = text.find("offset=\"", da);
+  ASSERT_NE(off, std::string::npos);
+  const std::size_t off_end = text.find('"', off + 8);
+  for (const std::string bad : {"-5", "x", "18446744073709551621", "1e3"}) {
+    std::string t = text;
+    t.replace(off + 8, off_end - off - 8, bad);
+    test::writeFile(dir / "bad.vti", t);
+    const std::string msg =
+        errorOf([&] { readImage(sourceOf(dir / "bad.vti", ImageFormat::Vti)); });
+    EXPECT_NE(msg.find("offset"), std::string::npos) << bad << ": " << msg;
+    EXPECT_NE(msg.find("bad.vti"), std::string::npos) << msg;
+  }
+  std::string t = text;
+  t.insert(da + 10, " NumberOfComponents=\"4294967297\"");
+  test::writeFile(dir / "bad.vti", t);
+  const std::string msg =
+      errorOf([&] { readImage(sourceOf(dir / "bad.vti", ImageFormat::Vti)); });
+  EXPECT_NE(msg.find("NumberOfComponents"), std::string::npos) << msg;
+}
+
 // Raw: every cut is short of dimensions x type; dimensions whose byte count
 // overflows 64 bits are refused as needing more than the file, not wrapped.
 TEST(TruncatedImages, RawCutAndOverflowingDimensions) {

@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 using namespace lamina::test;
 
 namespace {
@@ -111,4 +113,22 @@ TEST_F(NotFiles, MicroHomogenizeMaterialsRefuseCellImageAndLibrary) {
       fs::remove_all(p);
   }
   EXPECT_FALSE(fs::exists(d / "x.h5"));
+}
+
+// Outputs too: a FIFO standing in the output folder where a run writes a
+// table (probes.csv.part) or its fields (t.h5) blocked the run in its open;
+// each is now refused by name before it is opened, and stays a FIFO.
+TEST_F(NotFiles, MembraneRefusesAFifoWhereItWritesAnOutput) {
+  const TempDir& d = *dir_;
+  const auto case_file = (d / "t.toml").string();
+  write(case_file, membraneCase(kRectangle, ""));
+  for (const std::string name : {"probes.csv.part", "energy.csv.part", "t.h5"}) {
+    const fs::path out = d / ("out-" + name);
+    fs::create_directories(out);
+    const fs::path fifo = out / name;
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    expectRefused(bin("membrane") + " run '" + case_file + "' --out '" + out.string() + "'",
+                  fifo, "FIFO");
+    EXPECT_TRUE(fs::is_fifo(fifo)) << name;
+  }
 }
