@@ -2,6 +2,7 @@
 /// @file material.hpp
 /// @brief One entry of the materials library: stiffness, density, provenance.
 
+#include "materials/reduced_order.hpp"
 #include "materials/stiffness.hpp"
 
 #include <toml++/toml.h>
@@ -28,10 +29,18 @@ struct Material {
   std::string name;                ///< unique key in the library
   Stiffness C;                     ///< 6x6, lamina order, Pa
   double density = 0;              ///< kg/m^3, > 0
-  std::string kind = "catalog";    ///< "catalog", "homogenized", "layup" or "constants"
+  /// "catalog", "homogenized", "layup", "constants" or "reduced-order"
+  std::string kind = "catalog";
   std::optional<double> thickness; ///< total thickness (m), layups only
   std::vector<Ply> plies;          ///< the plies, layups only
   std::string side_file;           ///< optional HDF5 side file with large arrays
+  /// fileChecksum() of the side file, set when the library writes it and
+  /// checked where the side file is read
+  std::string side_checksum;
+  /// Reduced-order cells (kind "reduced-order"): the cell's phases, each
+  /// with its law and density; the arrays are in the side file
+  /// (reduced_order.hpp)
+  std::vector<ReducedOrderPhase> phases;
   toml::table provenance;          ///< what made it (free-form, written verbatim)
   /// Micro-inertia (GVBO chapter eq. 35): zeta^2 D, the coefficient of the
   /// engineering strain acceleration in the stress, 6x6, lamina order, kg/m;
