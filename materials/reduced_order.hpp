@@ -30,6 +30,7 @@
 /// Invariants (validate()): n >= 1; every partition has a phase, a fraction
 /// in (0, 1] and the fractions sum to 1 (1e-12); all numbers finite; the
 /// sizes match n.
+#include "core/checksum.hpp"
 #include "materials/law_spec.hpp"
 #include "materials/stiffness.hpp"
 
@@ -83,8 +84,7 @@ void writeReducedOrderArrays(const std::filesystem::path& path, const ReducedOrd
 /// malformed dataset, or a model that fails validate().
 void readReducedOrderArrays(const std::filesystem::path& path, ReducedOrderModel& m);
 
-/// @return the checksum of the bytes of file @p path ("fnv1a64:" and 16
-/// hex digits); throws lamina::Error naming the file if it cannot be read.
-std::string fileChecksum(const std::filesystem::path& path);
+/// The checksum the library keeps of side files (core/checksum.hpp).
+using core::fileChecksum;
 
 } // namespace lamina::materials

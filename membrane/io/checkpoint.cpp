@@ -1,6 +1,7 @@
 #include "membrane/io/checkpoint.hpp"
 
 #include "core/atomic_file.hpp"
+#include "core/checksum.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/hdf5_file.hpp"
@@ -21,29 +22,8 @@ namespace {
 
 constexpr const char* kFormat = "lamina membrane checkpoint 1";
 
-/// FNV-1a, 64 bits: a checksum against corruption, not a cryptographic hash.
-class Fnv1a {
-public:
-  void add(const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < bytes; ++i) {
-      h_ ^= p[i];
-      h_ *= 0x100000001b3ULL;
-    }
-  }
-  void add(const std::string& s) { add(s.data(), s.size() + 1); } // with the terminator
-  std::string hex() const {
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h_));
-    return buf;
-  }
-
-private:
-  std::uint64_t h_ = 0xcbf29ce484222325ULL;
-};
-
 std::string checksum(const History& data) {
-  Fnv1a f;
+  core::Fnv1a f;
   for (const auto& [key, v] : data) {
     f.add(key);
     const auto n = static_cast<std::uint64_t>(v.size());
@@ -160,7 +140,7 @@ Checkpoint readCheckpoint(const std::filesystem::path& path) {
 std::string caseDigest(const std::filesystem::path& case_file,
                        const std::vector<std::string>& overrides) {
   const std::string text = core::readWholeFile(case_file, core::kMaxTomlBytes, "case file");
-  Fnv1a f;
+  core::Fnv1a f;
   f.add(text);
   for (const auto& o : overrides)
     if (o.rfind("output.checkpoint_every", 0) != 0)
