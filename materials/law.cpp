@@ -8,11 +8,12 @@
 namespace lamina::materials {
 
 namespace {
-constexpr std::array<std::pair<LawKind, const char*>, 4> kLawNames{{
+constexpr std::array<std::pair<LawKind, const char*>, 5> kLawNames{{
     {LawKind::Isotropic, "isotropic"},
     {LawKind::TransverselyIsotropic, "transversely-isotropic"},
     {LawKind::Anisotropic, "anisotropic"},
     {LawKind::Gvbo, "gvbo"},
+    {LawKind::ReducedOrder, "reduced-order"},
 }};
 } // namespace
 
@@ -33,12 +34,14 @@ std::optional<LawKind> parseLawKind(const std::string& name) {
 std::string lawKindNames() {
   std::string out;
   for (const auto& [kind, name] : kLawNames)
-    out += (out.empty() ? "" : ", ") + std::string(name);
+    if (kind != LawKind::ReducedOrder) // referred to by an entry's name, not given with keys
+      out += (out.empty() ? "" : ", ") + std::string(name);
   return out;
 }
 
 LinearElasticLaw::LinearElasticLaw(LawKind kind, const Stiffness& C) : kind_(kind), C_(C) {
-  LAMINA_CHECK(kind != LawKind::Gvbo, "the gvbo law is not linear");
+  LAMINA_CHECK(kind != LawKind::Gvbo && kind != LawKind::ReducedOrder,
+               "the ", toString(kind), " law is not linear elasticity");
 }
 
 void LinearElasticLaw::update(const PointStep& step, const double*, double*, Vector6& sigma,

@@ -30,13 +30,19 @@ enum class LawKind {
   TransverselyIsotropic, ///< "transversely-isotropic": E1, E2, G12, nu12, nu23 (axis x)
   Anisotropic,           ///< "anisotropic": C, 6x6, lamina order, Pa
   Gvbo,                  ///< "gvbo": the polyurea chapter's rate-dependent law
+  /// "reduced-order": a reduced-order cell (reduced_order_law.hpp). Not a law
+  /// with keys: it is a library entry made by `homogenize --reduced-order`
+  /// and referred to by its name; readLawSpec refuses it.
+  ReducedOrder,
 };
 
 /// @return the file spelling of @p k ("isotropic", ...)
 const char* toString(LawKind k);
 /// @return the law of file spelling @p name, or nothing if unknown
 std::optional<LawKind> parseLawKind(const std::string& name);
-/// @return "isotropic, transversely-isotropic, anisotropic, gvbo" (for messages)
+/// @return the laws a file may give with keys, "isotropic,
+/// transversely-isotropic, anisotropic, gvbo" (for messages; not
+/// "reduced-order", which is referred to by an entry's name)
 std::string lawKindNames();
 
 /// Stress or strain vector in lamina order.
@@ -80,7 +86,8 @@ using LawPtr = std::shared_ptr<const ConstitutiveLaw>;
 /// sigma = C eps, no state.
 class LinearElasticLaw final : public ConstitutiveLaw {
 public:
-  /// @param kind which linear law produced @p C (not Gvbo); @param C stiffness
+  /// @param kind which linear law produced @p C (not Gvbo, not ReducedOrder);
+  /// @param C stiffness
   LinearElasticLaw(LawKind kind, const Stiffness& C);
   LawKind kind() const override { return kind_; }
   bool isLinear() const override { return true; }

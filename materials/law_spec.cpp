@@ -23,6 +23,10 @@ Stiffness transverselyIsotropic(double E1, double E2, double G12, double nu12, d
 
 namespace {
 
+constexpr const char* kReducedOrderIsAnEntry =
+    "'reduced-order' is not a law with keys: a reduced-order cell is a library entry made by "
+    "`homogenize --reduced-order`, referred to by its name (materials drive NAME)";
+
 double positive(const core::TableReader& t, const char* key) {
   const double v = t.getDouble(key);
   if (!(v > 0) || !std::isfinite(v))
@@ -58,6 +62,8 @@ LawSpec readLawConstants(const core::TableReader& t, LawKind kind) {
   case LawKind::Anisotropic:
     s.C = Stiffness(readMatrix6(t, "C"));
     break;
+  case LawKind::ReducedOrder:
+    t.fail("law", kReducedOrderIsAnEntry);
   }
   try {
     s.C.validate("law");
@@ -72,6 +78,7 @@ LawPtr LawSpec::make() const {
     LAMINA_CHECK(gvbo.has_value(), "gvbo law without its parameters");
     return std::make_shared<GvboLaw>(*gvbo);
   }
+  LAMINA_CHECK(kind != LawKind::ReducedOrder, kReducedOrderIsAnEntry);
   return std::make_shared<LinearElasticLaw>(kind, C);
 }
 
@@ -80,6 +87,8 @@ LawSpec readLawSpec(const core::TableReader& t) {
   const std::optional<LawKind> kind = parseLawKind(name);
   if (!kind)
     t.fail("law", "unknown law '" + name + "' (" + lawKindNames() + ")");
+  if (*kind == LawKind::ReducedOrder)
+    t.fail("law", kReducedOrderIsAnEntry);
   return readLawConstants(t, *kind);
 }
 

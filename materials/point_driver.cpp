@@ -72,9 +72,22 @@ public:
       R = inc.R;
     }
     trial_eps_ = step.eps;
+    trial_step_ = step;
+    trial_R_ = R;
     Vector6 sigma;
     law_.update(step, state_.data(), trial_.data(), sigma, tangent);
     return kin_ == Kinematics::Small ? sigma : rotateTensor(R, sigma);
+  }
+
+  /// The last trial as an observer sees it (state_n: the committed state).
+  DriveStep last(int n, double t) const {
+    DriveStep s;
+    s.n = n;
+    s.t = t;
+    s.step = trial_step_;
+    s.state_n = state_.data();
+    s.R = trial_R_;
+    return s;
   }
 
   /// Accepts the last trial at F.
@@ -90,6 +103,8 @@ private:
   std::vector<double> state_, trial_;
   Eigen::Matrix3d F_ = Eigen::Matrix3d::Identity();
   Vector6 eps_hat_ = Vector6::Zero(), trial_eps_ = Vector6::Zero();
+  PointStep trial_step_;
+  Eigen::Matrix3d trial_R_ = Eigen::Matrix3d::Identity();
 };
 
 } // namespace
@@ -134,7 +149,45 @@ void checkFinalStrain(DrivePath path, double to, const std::string& option) {
                 {"", 0, option});
 }
 
-std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& o) {
+namespace {
+
+/// Step @p n of drive(): the trial at the path's strain (with the lateral
+/// Newton of uniaxial stress, updating @p l), reported and committed.
+DriveRow driveStep(Point& point, const DriveOptions& o, int n, double dt, Eigen::Vector2d& l,
+                   const std::function<void(const DriveStep&)>& observer) {
+  const int k = n <= o.steps ? n : 2 * o.steps - n;
+  const double e = o.to * k / o.steps;
+  Eigen::Matrix3d F = pathF(o.path, e, l);
+  Matrix6 T;
+  Vector6 sigma = point.trial(F, dt, &T);
+  if (o.path == DrivePath::UniaxialStress) {
+    // lateral stresses to zero: Newton on (l_y, l_z) with the tangent's
+    // lateral block (d eps_hat / d l = 1 / F_ll at the midpoint)
+    int it = 0;
+    const double tol = 1e-10 * std::max(std::abs(sigma[0]), 1.0) + 1e-6;
+    while (std::max(std::abs(sigma[1]), std::abs(sigma[2])) > tol) {
+      LAMINA_CHECK(++it <= 50, "uniaxial stress: lateral stress did not vanish");
+      Eigen::Matrix2d Tl;
+      Tl << T(1, 1) / F(1, 1), T(1, 2) / F(2, 2), T(2, 1) / F(1, 1), T(2, 2) / F(2, 2);
+      l -= Tl.lu().solve(Eigen::Vector2d(sigma[1], sigma[2]));
+      F = pathF(o.path, e, l);
+      sigma = point.trial(F, dt, &T);
+    }
+  }
+  DriveRow row;
+  row.t = n * dt;
+  if (observer)
+    observer(point.last(n, row.t));
+  point.commit(F);
+  row.eps = smallStrain(F);
+  row.sigma = sigma;
+  return row;
+}
+
+} // namespace
+
+std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& o,
+                            const std::function<void(const DriveStep&)>& observer) {
   checkRate(o.rate, "--rate");
   checkFinalStrain(o.path, o.to, "--to");
   LAMINA_CHECK(o.steps >= 1, "--steps must be at least 1");
@@ -144,31 +197,14 @@ std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& o) {
   Eigen::Vector2d l = Eigen::Vector2d::Zero();
   const int total = o.unload ? 2 * o.steps : o.steps;
   for (int n = 1; n <= total; ++n) {
-    const int k = n <= o.steps ? n : 2 * o.steps - n;
-    const double e = o.to * k / o.steps;
-    Eigen::Matrix3d F = pathF(o.path, e, l);
-    Matrix6 T;
-    Vector6 sigma = point.trial(F, dt, &T);
-    if (o.path == DrivePath::UniaxialStress) {
-      // lateral stresses to zero: Newton on (l_y, l_z) with the tangent's
-      // lateral block (d eps_hat / d l = 1 / F_ll at the midpoint)
-      int it = 0;
-      const double tol = 1e-10 * std::max(std::abs(sigma[0]), 1.0) + 1e-6;
-      while (std::max(std::abs(sigma[1]), std::abs(sigma[2])) > tol) {
-        LAMINA_CHECK(++it <= 50, "uniaxial stress: lateral stress did not vanish at step ", n);
-        Eigen::Matrix2d Tl;
-        Tl << T(1, 1) / F(1, 1), T(1, 2) / F(2, 2), T(2, 1) / F(1, 1), T(2, 2) / F(2, 2);
-        l -= Tl.lu().solve(Eigen::Vector2d(sigma[1], sigma[2]));
-        F = pathF(o.path, e, l);
-        sigma = point.trial(F, dt, &T);
-      }
+    try {
+      rows.push_back(driveStep(point, o, n, dt, l, observer));
+    } catch (const Error& e) {
+      // the step and its time in front, the law's context (its entry) kept
+      throw Error(detail::concat("step ", n, " of ", total, " (t = ", n * dt, " s): ",
+                                 e.message()),
+                  e.context());
     }
-    point.commit(F);
-    DriveRow row;
-    row.t = n * dt;
-    row.eps = smallStrain(F);
-    row.sigma = sigma;
-    rows.push_back(row);
   }
   return rows;
 }

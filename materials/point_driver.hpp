@@ -20,6 +20,7 @@
 #include "materials/law.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -74,9 +75,25 @@ struct DriveRow {
   Vector6 sigma = Vector6::Zero(); ///< Cauchy stress, lamina order (Pa)
 };
 
-/// Drives @p law; first row t = 0. Throws lamina::Error on bad options or
-/// when the uniaxial-stress iteration does not converge.
-std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& options);
+/// One accepted step, as drive() reports it to an observer (for outputs
+/// beyond the stress, e.g. a reduced-order law's nonlinear dispersion).
+struct DriveStep {
+  int n = 0;                  ///< step number (1-based)
+  double t = 0;               ///< time at the end of the step (s)
+  PointStep step;             ///< the step in the law's rotation-free frame
+  const double* state_n = nullptr; ///< the law's state at t_n (stateSize() doubles)
+  /// rotation from the rotation-free frame to the global one (identity for
+  /// small kinematics): a tensor X of the law's frame is R X R^T globally
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+};
+
+/// Drives @p law; first row t = 0. @p observer (if set) sees every accepted
+/// step before its state is committed. Throws lamina::Error on bad options
+/// or when the uniaxial-stress iteration does not converge; an error of the
+/// law (or of the observer) is rethrown with the step number and t in front
+/// of its message, its context kept.
+std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& options,
+                            const std::function<void(const DriveStep&)>& observer = {});
 
 /// The CSV header of `materials drive`.
 inline constexpr const char* kDriveHeader =

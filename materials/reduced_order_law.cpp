@@ -1,0 +1,270 @@
+#include "materials/reduced_order_law.hpp"
+
+#include "core/error.hpp"
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <utility>
+
+namespace lamina::materials {
+
+namespace {
+
+using Eigen::Index;
+
+Index idx(std::size_t k) {
+  return static_cast<Index>(k);
+}
+
+std::size_t uz(int k) {
+  return static_cast<std::size_t>(k);
+}
+
+double trace(const Vector6& e) {
+  return e[0] + e[1] + e[2];
+}
+
+} // namespace
+
+/// The nonlinear partitions at trial strains: stresses, tangents,
+/// eigenstrains and their laws' new states (a buffer apart from the state,
+/// which may alias state_n until the step is accepted).
+struct ReducedOrderLaw::Trial {
+  std::vector<Vector6> eps, sigma, mu;
+  std::vector<Matrix6> T;
+  std::vector<double> state;
+  explicit Trial(std::size_t m, int state_size)
+      : eps(m), sigma(m), mu(m), T(m), state(uz(state_size)) {}
+};
+
+ReducedOrderLaw::ReducedOrderLaw(std::string entry, ReducedOrderModel model,
+                                 ReducedOrderOptions options)
+    : entry_(std::move(entry)), model_(std::move(model)), options_(options) {
+  try {
+    model_.validate("reduced-order cell");
+    LAMINA_CHECK(options_.tolerance > 0 && std::isfinite(options_.tolerance),
+                 "the Newton tolerance must be positive, got ", options_.tolerance);
+    LAMINA_CHECK(options_.max_iterations >= 1, "the Newton cap must be at least 1 iteration");
+    std::vector<LawPtr> phase_laws;
+    for (const ReducedOrderPhase& ph : model_.phases)
+      phase_laws.push_back(ph.law.make()); // refuses a reduced-order phase
+    const int n = model_.partitions();
+    for (int a = 0; a < n; ++a) {
+      laws_.push_back(phase_laws[uz(model_.partition_phase[uz(a)])]);
+      L0_.push_back(laws_.back()->elasticStiffness(1.0).matrix());
+      L0inv_.push_back(L0_.back().inverse());
+      LAMINA_CHECK(L0inv_.back().allFinite(), "the reference stiffness of partition ", a,
+                   " is singular");
+      (laws_.back()->isLinear() ? linear_ : nonlinear_).push_back(a);
+    }
+  } catch (const Error& e) {
+    fail(e.message());
+  }
+  const int n = model_.partitions();
+  offset_.assign(uz(n), -1);
+  if (!nonlinear_.empty())
+    for (int a = 0; a < n; ++a) {
+      offset_[uz(a)] = state_size_;
+      state_size_ += 6 + laws_[uz(a)]->stateSize();
+    }
+  for (int a : nonlinear_) {
+    trial_offset_.push_back(trial_state_size_);
+    trial_state_size_ += laws_[uz(a)]->stateSize();
+  }
+  C_linear_.setZero();
+  for (int e : linear_)
+    C_linear_ += model_.fraction[uz(e)] * L0_[uz(e)] * model_.A[uz(e)];
+  const std::size_t m = nonlinear_.size();
+  B_.assign(m, Matrix6::Zero());
+  R_nl_.resize(6 * idx(m), 6 * idx(m));
+  Q_nl_.resize(6, 6 * idx(m));
+  for (std::size_t k = 0; k < m; ++k) {
+    const int a = nonlinear_[k];
+    for (int e : linear_)
+      B_[k] += model_.fraction[uz(e)] * L0_[uz(e)] * model_.P[uz(e * n + a)];
+    for (std::size_t l = 0; l < m; ++l)
+      R_nl_.block<6, 6>(6 * idx(k), 6 * idx(l)) = model_.R.block<6, 6>(6 * a, 6 * nonlinear_[l]);
+    Q_nl_.block<6, 6>(0, 6 * idx(k)) = model_.Q.block<6, 6>(0, 6 * a);
+  }
+}
+
+void ReducedOrderLaw::fail(const std::string& message) const {
+  throw Error("reduced-order cell: " + message, {"", 0, entry_});
+}
+
+void ReducedOrderLaw::initState(double* state) const {
+  for (std::size_t a = 0; a < offset_.size(); ++a) {
+    if (offset_[a] < 0)
+      continue; // a linear cell has no state
+    std::fill(state + offset_[a], state + offset_[a] + 6, 0.0);
+    laws_[a]->initState(state + offset_[a] + 6);
+  }
+}
+
+void ReducedOrderLaw::evaluate(const PointStep& step, const double* state_n, Trial& t) const {
+  for (std::size_t k = 0; k < nonlinear_.size(); ++k) {
+    const int a = nonlinear_[k];
+    const double* block_n = state_n + offset_[uz(a)];
+    PointStep ps;
+    ps.eps_n = Eigen::Map<const Vector6>(block_n);
+    ps.eps = t.eps[k];
+    ps.J_n = step.J_n + trace(ps.eps_n) - trace(step.eps_n);
+    ps.J = step.J + trace(ps.eps) - trace(step.eps);
+    ps.dt = step.dt;
+    if (!(ps.J > 0 && ps.J_n > 0))
+      fail(detail::concat("partition ", a, " would reach a volume ratio J = ", ps.J,
+                          " (not positive)"));
+    try {
+      laws_[uz(a)]->update(ps, block_n + 6, t.state.data() + trial_offset_[k], t.sigma[k], &t.T[k]);
+    } catch (const Error& e) {
+      fail(detail::concat("partition ", a, ": ", e.message()));
+    }
+    t.mu[k] = t.eps[k] - L0inv_[uz(a)] * t.sigma[k];
+  }
+}
+
+Eigen::MatrixXd ReducedOrderLaw::jacobian(const std::vector<Matrix6>& T) const {
+  const std::size_t m = nonlinear_.size();
+  const int n = model_.partitions();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Identity(6 * idx(m), 6 * idx(m));
+  for (std::size_t l = 0; l < m; ++l) {
+    const int a = nonlinear_[l];
+    // I - L0^-1 T as L0^-1 (L0 - T): exactly zero where T = L0
+    const Matrix6 dmu = L0inv_[uz(a)] * (L0_[uz(a)] - T[l]);
+    for (std::size_t k = 0; k < m; ++k)
+      K.block<6, 6>(6 * idx(k), 6 * idx(l)) -= model_.P[uz(nonlinear_[k] * n + a)] * dmu;
+  }
+  return K;
+}
+
+void ReducedOrderLaw::sensitivities(const std::vector<Matrix6>& T, Eigen::MatrixXd& deps,
+                                    Eigen::MatrixXd& dmu) const {
+  const std::size_t m = nonlinear_.size();
+  Eigen::MatrixXd A_nl(6 * idx(m), 6);
+  for (std::size_t k = 0; k < m; ++k)
+    A_nl.block<6, 6>(6 * idx(k), 0) = model_.A[uz(nonlinear_[k])];
+  deps = jacobian(T).partialPivLu().solve(A_nl);
+  dmu.resize(6 * idx(m), 6);
+  for (std::size_t k = 0; k < m; ++k) {
+    const int a = nonlinear_[k];
+    dmu.block<6, 6>(6 * idx(k), 0) =
+        L0inv_[uz(a)] * (L0_[uz(a)] - T[k]) * deps.block<6, 6>(6 * idx(k), 0);
+  }
+}
+
+Matrix6 ReducedOrderLaw::coarseTangent(const std::vector<Matrix6>& T, const Eigen::MatrixXd& deps,
+                                       const Eigen::MatrixXd& dmu) const {
+  Matrix6 C = C_linear_;
+  for (std::size_t k = 0; k < nonlinear_.size(); ++k)
+    C += model_.fraction[uz(nonlinear_[k])] * T[k] * deps.block<6, 6>(6 * idx(k), 0) +
+         B_[k] * dmu.block<6, 6>(6 * idx(k), 0);
+  return C;
+}
+
+Stiffness ReducedOrderLaw::elasticStiffness(double J) const {
+  if (nonlinear_.empty())
+    return Stiffness(C_linear_);
+  std::vector<Matrix6> T;
+  for (int a : nonlinear_)
+    T.push_back(laws_[uz(a)]->elasticStiffness(J).matrix());
+  Eigen::MatrixXd deps, dmu;
+  sensitivities(T, deps, dmu);
+  return Stiffness(coarseTangent(T, deps, dmu));
+}
+
+void ReducedOrderLaw::update(const PointStep& step, const double* state_n, double* state,
+                             Vector6& sigma, Matrix6* tangent) const {
+  updateWithInfo(step, state_n, state, sigma, tangent, nullptr);
+}
+
+void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_n, double* state,
+                                     Vector6& sigma, Matrix6* tangent,
+                                     ReducedOrderStepInfo* info) const {
+  const std::size_t m = nonlinear_.size();
+  const int n = model_.partitions();
+  if (m == 0) { // a linear cell: sigma = (sum c L A) eps, no state
+    sigma = C_linear_ * step.eps;
+    if (tangent)
+      *tangent = C_linear_;
+    if (info)
+      *info = {0, 0.0, Eigen::MatrixXd(0, 6)};
+    return;
+  }
+  Trial t(m, trial_state_size_);
+  const Vector6 deps_c = step.eps - step.eps_n;
+  for (std::size_t k = 0; k < m; ++k) {
+    const int b = nonlinear_[k];
+    t.eps[k] = Eigen::Map<const Vector6>(state_n + offset_[uz(b)]) + model_.A[uz(b)] * deps_c;
+  }
+  Eigen::VectorXd r(6 * idx(m));
+  int iterations = 0;
+  double norm = 0;
+  for (;;) {
+    evaluate(step, state_n, t);
+    double scale = step.eps.cwiseAbs().maxCoeff();
+    for (std::size_t k = 0; k < m; ++k) {
+      const int b = nonlinear_[k];
+      Vector6 rb = t.eps[k] - model_.A[uz(b)] * step.eps;
+      for (std::size_t l = 0; l < m; ++l)
+        rb -= model_.P[uz(b * n + nonlinear_[l])] * t.mu[l];
+      r.segment<6>(6 * idx(k)) = rb;
+      scale = std::max(scale, t.eps[k].cwiseAbs().maxCoeff());
+    }
+    norm = r.lpNorm<Eigen::Infinity>();
+    if (norm <= options_.tolerance * scale)
+      break;
+    if (iterations == options_.max_iterations || !std::isfinite(norm))
+      fail(detail::concat("the Newton iteration of the partition strains did not converge: "
+                          "residual ",
+                          norm, " after ", iterations, " iterations (tolerance ",
+                          options_.tolerance, " x ", scale, ")"));
+    const Eigen::VectorXd dx = jacobian(t.T).partialPivLu().solve(r);
+    for (std::size_t k = 0; k < m; ++k)
+      t.eps[k] -= dx.segment<6>(6 * idx(k));
+    ++iterations;
+  }
+  // the average (eq. 33): linear partitions through C_linear_ and B_
+  sigma = C_linear_ * step.eps;
+  for (std::size_t k = 0; k < m; ++k)
+    sigma += model_.fraction[uz(nonlinear_[k])] * t.sigma[k] + B_[k] * t.mu[k];
+  if (tangent || info) {
+    Eigen::MatrixXd deps, dmu;
+    sensitivities(t.T, deps, dmu);
+    if (tangent)
+      *tangent = coarseTangent(t.T, deps, dmu);
+    if (info)
+      *info = {iterations, norm, std::move(dmu)};
+  }
+  // accept: every read of state_n is done (state may alias it)
+  for (int e : linear_) {
+    Vector6 eps_e = model_.A[uz(e)] * step.eps;
+    for (std::size_t l = 0; l < m; ++l)
+      eps_e += model_.P[uz(e * n + nonlinear_[l])] * t.mu[l];
+    Eigen::Map<Vector6>(state + offset_[uz(e)]) = eps_e;
+  }
+  for (std::size_t k = 0; k < m; ++k) {
+    const int a = nonlinear_[k];
+    Eigen::Map<Vector6>(state + offset_[uz(a)]) = t.eps[k];
+    const auto begin = t.state.begin() + trial_offset_[k];
+    std::copy(begin, begin + laws_[uz(a)]->stateSize(), state + offset_[uz(a)] + 6);
+  }
+}
+
+Matrix6 ReducedOrderLaw::nonlinearDispersion(const ReducedOrderStepInfo& info) const {
+  const Index rows = 6 * idx(nonlinear_.size());
+  LAMINA_CHECK(info.dmu_deps.rows() == rows && info.dmu_deps.cols() == 6,
+               "nonlinear dispersion of '", entry_, "': d mu / d eps^c is ",
+               info.dmu_deps.rows(), " x ", info.dmu_deps.cols(), ", expected ", rows, " x 6");
+  if (rows == 0)
+    return Matrix6::Zero(); // every d mu is zero
+  const Eigen::MatrixXd& M = info.dmu_deps;
+  const Matrix6 X = M.transpose() * (R_nl_ * M);
+  const Matrix6 QM = Q_nl_ * M;
+  // written symmetric term by term, so the result is symmetric to the bit
+  return 0.5 * (X + X.transpose()) + (QM + QM.transpose());
+}
+
+} // namespace lamina::materials

@@ -1,0 +1,180 @@
+#pragma once
+/// @file reduced_order_law.hpp
+/// @brief A reduced-order unit cell as a constitutive law (polyurea chapter,
+/// section 4.2, eqs. 22-34; micro-inertia eq. 40): the coarse stress of a
+/// material point whose microstructure is the cell of a ReducedOrderModel
+/// (reduced_order.hpp), each partition following its phase's law.
+///
+/// **Method.** The cell is split into n partitions alpha, each inside one
+/// phase with reference stiffness L0 (its law's elasticStiffness(1.0), the
+/// stiffness the influence functions were computed with). Every partition
+/// carries a uniform strain eps^(alpha) and an eigenstrain mu^(alpha); the
+/// reduced system (eq. 32 averaged over partition beta) is
+///
+///     d eps^(beta) = A^(beta) d eps^c + sum_alpha P^(beta alpha) d mu^(alpha),
+///
+/// and the eigenstrain increment of eq. 23 carries both the inelastic strain
+/// and the change of moduli of the partition's law:
+///
+///     d mu^(alpha) = d eps^(alpha) - L0^-1 (sigma^(alpha) - sigma^(alpha)_n).
+///
+/// Summed from the virgin state (eps = sigma = mu = 0) this is mu^(alpha) =
+/// eps^(alpha) - L0^-1 sigma^(alpha), and the step is solved in that summed
+/// form at t_{n+1} (the same equations; it needs no stress of t_n and does
+/// not accumulate the Newton residuals of earlier steps):
+///
+///     r^(beta) = eps^(beta) - A^(beta) eps^c - sum_{alpha nonlinear} P^(beta alpha) mu^(alpha) = 0,
+///
+/// with one unknown eps^(beta) (6) per *nonlinear* partition beta. A
+/// partition with a linear law has sigma = L0 eps, so mu = 0 exactly: it
+/// carries no unknowns, and its strain follows once the nonlinear ones are
+/// known. This is what makes a point cheap: a GVBO + elastic cell with 8
+/// partitions per phase solves a 48 x 48 system, not 96 x 96. Each partition
+/// is stepped by its own law from its eps^(alpha)_n with J^(alpha) = J +
+/// tr eps^(alpha) - tr eps^c. Newton on the unknowns, Jacobian
+///
+///     K_(beta alpha) = delta_(beta alpha) I - P^(beta alpha) L0_alpha^-1 (L0_alpha - T_alpha),
+///
+/// T_alpha the consistent tangent of partition alpha's law, from eps^(beta)_n
+/// + A^(beta) d eps^c; converged when max |r| <= tolerance * max(|eps^c|,
+/// |eps^(beta)|) (max norms). The coarse stress is the average (eq. 33),
+/// sigma^c = sum c_alpha sigma^(alpha), and the consistent coarse tangent is
+///
+///     d eps_N / d eps^c = K^-1 A_N,   d mu_N / d eps^c = L0^-1 (L0 - T) d eps_N / d eps^c,
+///     C_T = sum_{nonlinear b} c_b T_b d eps^(b)/d eps^c
+///         + sum_{linear e} c_e L_e (A^(e) + sum_a P^(e a) d mu^(a)/d eps^c)
+///
+/// (N: the nonlinear partitions stacked). The GVBO tangent holds each
+/// partition's J fixed, so the Newton and the coarse tangent leave out the
+/// derivative of the moduli through J (gvbo_law.hpp).
+///
+/// **Micro-inertia.** d mu / d eps^c of the last step gives the nonlinear
+/// dispersion of eq. 40, D_nonlin = M^T R M + Q M + (Q M)^T with M = d mu_N /
+/// d eps^c (6m x 6) and R, Q restricted to the nonlinear partitions (the
+/// linear ones have d mu = 0), in kg/m like Material::dispersion.
+///
+/// **State** per point: for every partition alpha in order, its total strain
+/// eps^(alpha) (6, lamina order, engineering shear) followed by its law's
+/// state; stateSize() = sum_alpha (6 + stateSize of its law). A GVBO (20) +
+/// elastic (0) cell: 32 doubles with one partition per phase, 256 with 8.
+///
+/// **Cost** of one step with m nonlinear of n partitions (flops: a 6x6
+/// matrix-vector product is 72, a matrix-matrix product 432). Per Newton
+/// iteration: m law updates with tangent, the eigenstrains (72 m), the
+/// residual (72 m (m + 1)), K (432 m (m + 1)), its LU (144 m^3) and solve
+/// (72 m^2). Once per step: K and its LU again at the converged strains for
+/// the tangent (plus 432 m^2 for its six right-hand sides and 1300 m for d mu
+/// and C_T), the stress (72 (m + 1); the linear partitions enter through two
+/// precomputed sums, C_lin = sum c_e L_e A^(e) and B_a = sum c_e L_e
+/// P^(e a)), and the linear partitions' strains for the state (72 (n - m)
+/// (m + 1)). Newton takes 1-4 iterations on a smooth path. Memory per point:
+/// stateSize() doubles; the law object holds the model (36 n^2 + 72 n^2 for
+/// P and R).
+///
+/// **Linear cells.** When every partition's law is linear the cell is linear
+/// elasticity: isLinear() is true, stateSize() is 0 (the partition strains
+/// A^(alpha) eps are not stored) and sigma = (sum c L A) eps exactly, so
+/// solvers keep their fast path.
+
+#include "materials/law.hpp"
+#include "materials/reduced_order.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace lamina::materials {
+
+/// The Newton iteration of the partition strains.
+struct ReducedOrderOptions {
+  /// converged when max |r| <= tolerance * max(|eps^c|, |eps^(beta)|) (max
+  /// norms, strain): 1e-10 puts the stress 1e-10 of its scale from the exact
+  /// answer, far below any modelling error, and within reach of round-off
+  double tolerance = 1e-10;
+  /// iterations before a step is refused (lamina::Error naming the entry)
+  int max_iterations = 25;
+};
+
+/// What one step of the reduced-order law computes besides the stress.
+struct ReducedOrderStepInfo {
+  int iterations = 0;   ///< Newton iterations taken (0: the first guess held)
+  double residual = 0;  ///< final max |r| (strain)
+  /// d(d mu)/d(d eps^c) of the nonlinear partitions, stacked in the order of
+  /// ReducedOrderLaw::nonlinearPartitions() (6m x 6, engineering strain)
+  Eigen::MatrixXd dmu_deps;
+};
+
+/// A reduced-order cell at a material point (see the file comment).
+class ReducedOrderLaw final : public ConstitutiveLaw {
+public:
+  /// @param entry the library entry's name (named in every error)
+  /// @param model the cell (validated here); partition alpha follows
+  ///        model.phases[model.partition_phase[alpha]].law.make()
+  /// @param options the Newton tolerance and cap
+  ReducedOrderLaw(std::string entry, ReducedOrderModel model, ReducedOrderOptions options = {});
+
+  LawKind kind() const override { return LawKind::ReducedOrder; }
+  /// @return true only when every partition's law is linear (then sigma = C eps)
+  bool isLinear() const override { return nonlinear_.empty(); }
+  int stateSize() const override { return state_size_; }
+  void initState(double* state) const override;
+  /// The instantaneous coarse tangent at J: every partition at J with its
+  /// law's elasticStiffness(J) as T, through the reduced system; at J = 1
+  /// (T = L0, d mu = 0) exactly sum c L0 A.
+  Stiffness elasticStiffness(double J = 1.0) const override;
+  /// One step (file comment); throws lamina::Error naming the entry, the
+  /// Newton residual and the iterations when the Newton does not converge.
+  void update(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
+              Matrix6* tangent) const override;
+  /// As update(), also reporting the iterations, the residual and d mu / d
+  /// eps^c in @p info (if not null).
+  void updateWithInfo(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
+                      Matrix6* tangent, ReducedOrderStepInfo* info) const;
+
+  /// D_nonlin of eq. 40 (kg/m, 6x6, symmetric) from the d mu / d eps^c of
+  /// @p info: M^T R M + Q M + (Q M)^T over the nonlinear partitions; exactly
+  /// zero for a linear cell.
+  Matrix6 nonlinearDispersion(const ReducedOrderStepInfo& info) const;
+
+  /// @return the entry name
+  const std::string& entry() const { return entry_; }
+  /// @return the cell
+  const ReducedOrderModel& model() const { return model_; }
+  /// @return the partitions whose law is not linear (the Newton unknowns), ascending
+  const std::vector<int>& nonlinearPartitions() const { return nonlinear_; }
+  /// @return the offset of partition @p alpha's block in the state (its
+  /// strain; its law's state follows at offset + 6). Linear cells: none.
+  int stateOffset(int alpha) const { return offset_[static_cast<std::size_t>(alpha)]; }
+  /// @return the options
+  const ReducedOrderOptions& options() const { return options_; }
+
+private:
+  struct Trial;
+  /// Steps every nonlinear partition to the strains of @p trial.
+  void evaluate(const PointStep& step, const double* state_n, Trial& trial) const;
+  /// d eps_N / d eps^c and d mu_N / d eps^c from the partition tangents @p T.
+  void sensitivities(const std::vector<Matrix6>& T, Eigen::MatrixXd& deps,
+                     Eigen::MatrixXd& dmu) const;
+  /// The coarse tangent from the tangents @p T and sensitivities.
+  Matrix6 coarseTangent(const std::vector<Matrix6>& T, const Eigen::MatrixXd& deps,
+                        const Eigen::MatrixXd& dmu) const;
+  /// K of the file comment from the partition tangents @p T.
+  Eigen::MatrixXd jacobian(const std::vector<Matrix6>& T) const;
+  [[noreturn]] void fail(const std::string& message) const;
+
+  std::string entry_;
+  ReducedOrderModel model_;
+  ReducedOrderOptions options_;
+  std::vector<LawPtr> laws_;            ///< per partition (shared per phase)
+  std::vector<Matrix6> L0_, L0inv_;     ///< per partition
+  std::vector<int> nonlinear_, linear_; ///< partition indices
+  std::vector<int> offset_;             ///< per partition: start of its state block
+  std::vector<int> trial_offset_;       ///< per nonlinear partition: its law state in a Trial
+  int state_size_ = 0, trial_state_size_ = 0;
+  Matrix6 C_linear_;                    ///< sum over linear e of c_e L_e A^(e)
+  std::vector<Matrix6> B_;              ///< per nonlinear a: sum over linear e of c_e L_e P^(e a)
+  Eigen::MatrixXd R_nl_, Q_nl_;         ///< R, Q restricted to the nonlinear partitions
+};
+
+} // namespace lamina::materials
