@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <functional>
 #include <ctime>
 #include <iostream>
 #include <sstream>
@@ -91,6 +92,8 @@ void printHuman(const mat::Material& m) {
               << " m\n";
   if (!m.side_file.empty())
     std::cout << "  side file " << m.side_file << "\n";
+  if (!m.side_checksum.empty())
+    std::cout << "  side checksum " << m.side_checksum << "\n";
   if (!m.provenance.empty()) {
     std::cout << "  provenance:\n";
     for (const auto& [k, v] : m.provenance) {
@@ -135,6 +138,9 @@ struct Args {
   double density = 0;
   std::vector<std::string> plies;
   mat::DriveOptions drive;
+  std::string nonlinear_dispersion; ///< drive --nonlinear-dispersion FILE.csv
+  int newton_iterations = 0;        ///< drive --newton-iterations (0: the law's default)
+  double newton_tolerance = 0;      ///< drive --newton-tolerance (0: the law's default)
 
   /// @return the catalog file: --catalog, else the default
   std::filesystem::path catalogFile() const {
@@ -167,6 +173,14 @@ CLI::App* addDriveCommand(CLI::App& app, Args& a) {
                   "finite (rotation-free frame, J = det F; default) | small")
       ->check(CLI::IsMember({"finite", "small"}));
   cmd->add_option("--out", a.out, "CSV file to write")->required();
+  cmd->add_option("--nonlinear-dispersion", a.nonlinear_dispersion,
+                  "reduced-order entries: CSV of D_nonlin (eq. 40, kg/m) along the history");
+  cmd->add_option("--newton-iterations", a.newton_iterations,
+                  "reduced-order entries: Newton cap per step (default 25)")
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--newton-tolerance", a.newton_tolerance,
+                  "reduced-order entries: Newton tolerance, relative strain (default 1e-10)")
+      ->check(CLI::Range(1e-16, 1e-2));
   cmd->add_option("--library", a.library, "library file (as before the subcommand)");
   return cmd;
 }
@@ -221,7 +235,11 @@ void listEntries(const Args& a, const std::filesystem::path& library) {
   const mat::Library lib(library);
   for (const auto& n : lib.names()) {
     const auto& m = lib.get(n);
-    std::cout << n << "  " << m.kind << "  " << mat::toString(mat::classify(m.C).cls) << "\n";
+    std::cout << n << "  " << m.kind << "  " << mat::toString(mat::classify(m.C).cls);
+    std::string phases;
+    for (const auto& p : m.phases)
+      phases += (phases.empty() ? "" : ", ") + p.name + " (" + mat::toString(p.law.kind) + ")";
+    std::cout << (phases.empty() ? "" : "  phases " + phases) << "\n";
   }
 }
 
@@ -266,8 +284,35 @@ void addLayup(const Args& a, const std::filesystem::path& library) {
             << lamina::core::formatShort(*m.thickness) << " m) to " << library.string() << "\n";
 }
 
-/// `drive`: the rate, the strain and the output checked before anything is
-/// computed, then the point driven and its CSV written.
+/// The Newton options of `drive` (the law's defaults where not given).
+mat::ReducedOrderOptions newtonOptions(const Args& a) {
+  mat::ReducedOrderOptions o;
+  if (a.newton_iterations > 0)
+    o.max_iterations = a.newton_iterations;
+  if (a.newton_tolerance > 0)
+    o.tolerance = a.newton_tolerance;
+  return o;
+}
+
+/// Throws naming the option when a reduced-order option is given for @p law
+/// of another kind.
+void checkReducedOrderOptions(const Args& a, const mat::ConstitutiveLaw& law) {
+  if (law.kind() == mat::LawKind::ReducedOrder)
+    return;
+  const std::pair<bool, const char*> given[] = {
+      {!a.nonlinear_dispersion.empty(), "--nonlinear-dispersion"},
+      {a.newton_iterations > 0, "--newton-iterations"},
+      {a.newton_tolerance > 0, "--newton-tolerance"}};
+  for (const auto& [set, option] : given)
+    if (set)
+      throw lamina::Error(std::string(option) + " applies to reduced-order entries; '" + a.name +
+                              "' is a " + mat::toString(law.kind()) + " law",
+                          {"", 0, option});
+}
+
+/// `drive`: the rate, the strain and the outputs checked before anything is
+/// computed, then the point driven and its CSV (and, for a reduced-order
+/// law, its D_nonlin CSV) written.
 void driveEntry(Args a, const std::filesystem::path& library) {
   a.drive.path = *mat::parseDrivePath(a.path_name);
   a.drive.kinematics = a.kinematics == "small" ? mat::Kinematics::Small : mat::Kinematics::Finite;
@@ -275,13 +320,77 @@ void driveEntry(Args a, const std::filesystem::path& library) {
   mat::checkFinalStrain(a.drive.path, a.drive.to, "--to");
   // never over a device, a FIFO, a directory, nor over the library or the catalog
   lamina::core::checkOutput(a.out, {library, a.catalogFile()}, "--out");
+  if (!a.nonlinear_dispersion.empty()) {
+    lamina::core::checkOutput(a.nonlinear_dispersion, {library, a.catalogFile()},
+                              "--nonlinear-dispersion");
+    namespace fs = std::filesystem;
+    if (fs::weakly_canonical(lamina::core::resolveLinks(a.nonlinear_dispersion)) ==
+        fs::weakly_canonical(lamina::core::resolveLinks(a.out)))
+      throw lamina::Error("names the same file as --out", {a.out, 0, "--nonlinear-dispersion"});
+  }
   mat::MaterialSource source(library.string(), a.catalog);
-  const mat::LawPtr law = source.law(a.name);
-  const std::vector<mat::DriveRow> rows = mat::drive(*law, a.drive);
+  const mat::LawPtr law = source.law(a.name, newtonOptions(a));
+  checkReducedOrderOptions(a, *law);
+  std::vector<mat::DispersionRow> dispersion;
+  std::function<void(const mat::DriveStep&)> observer;
+  if (!a.nonlinear_dispersion.empty())
+    observer = mat::recordNonlinearDispersion(dynamic_cast<const mat::ReducedOrderLaw&>(*law),
+                                              dispersion);
+  const std::vector<mat::DriveRow> rows = mat::drive(*law, a.drive, observer);
   mat::writeDriveCsv(a.out, rows);
+  if (!a.nonlinear_dispersion.empty())
+    mat::writeDispersionCsv(a.nonlinear_dispersion, dispersion);
   std::cerr << "drove '" << a.name << "' (" << mat::toString(law->kind()) << ") along "
             << a.path_name << " at " << a.drive.rate << " /s to " << a.drive.to << ": "
-            << rows.size() << " rows in " << a.out << "\n";
+            << rows.size() << " rows in " << a.out
+            << (a.nonlinear_dispersion.empty() ? "" : ", D_nonlin in " + a.nonlinear_dispersion)
+            << "\n";
+}
+
+/// What `show` adds for a reduced-order entry: per phase its law, density
+/// and partitions, and the state per point (reads the side file).
+void showReducedOrder(const mat::Library& lib, const mat::Material& m, nlohmann::json* json) {
+  const mat::ReducedOrderLaw law(m.name, mat::readReducedOrderEntry(lib, m));
+  std::vector<int> count(m.phases.size(), 0);
+  for (std::int32_t p : law.model().partition_phase)
+    ++count[static_cast<std::size_t>(p)];
+  if (json) {
+    for (std::size_t p = 0; p < m.phases.size(); ++p)
+      (*json)["phases"][p]["partitions"] = count[p];
+    (*json)["state_doubles"] = law.stateSize();
+    (*json)["nonlinear_partitions"] = law.nonlinearPartitions().size();
+    return;
+  }
+  std::cout << "  phases (law, density, partitions):\n";
+  for (std::size_t p = 0; p < m.phases.size(); ++p) {
+    const mat::ReducedOrderPhase& ph = m.phases[p];
+    std::cout << "    " << ph.name << "  " << mat::toString(ph.law.kind) << " ("
+              << mat::toString(mat::classify(ph.law.C).cls) << " at J = 1)  "
+              << lamina::core::formatShort(ph.density, 6) << " kg/m^3  " << count[p]
+              << (count[p] == 1 ? " partition" : " partitions") << "\n";
+  }
+  std::cout << "  partitions " << law.model().partitions() << ", "
+            << law.nonlinearPartitions().size() << " nonlinear (the Newton unknowns: "
+            << 6 * law.nonlinearPartitions().size() << " per point)\n"
+            << "  state " << law.stateSize()
+            << " doubles per point (per partition: its strain, 6, then its law's state)\n";
+}
+
+/// `show`: one entry, human-readable or as JSON.
+void showEntry(const Args& a, const std::filesystem::path& path) {
+  const mat::Library lib(path);
+  const mat::Material& m = lib.get(a.name);
+  const bool reduced = m.kind == mat::kReducedOrderKind;
+  if (a.json) {
+    nlohmann::json j = mat::materialToJson(m);
+    if (reduced)
+      showReducedOrder(lib, m, &j);
+    std::cout << j.dump(2) << "\n";
+    return;
+  }
+  printHuman(m);
+  if (reduced)
+    showReducedOrder(lib, m, nullptr);
 }
 
 /// Runs the subcommand of @p c that was given.
@@ -290,11 +399,7 @@ void runCommand(const Commands& c, const Args& a) {
   if (c.list->parsed()) {
     listEntries(a, path);
   } else if (c.show->parsed()) {
-    const mat::Library lib(path);
-    if (a.json)
-      std::cout << mat::materialToJson(lib.get(a.name)).dump(2) << "\n";
-    else
-      printHuman(lib.get(a.name));
+    showEntry(a, path);
   } else if (c.add->parsed()) {
     mat::Library(path).add(newEntry(a), a.overwrite);
     std::cerr << "added '" << a.name << "' to " << path.string() << "\n";

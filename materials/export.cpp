@@ -143,6 +143,25 @@ nlohmann::json materialToJson(const Material& m) {
   }
   if (!m.side_file.empty())
     j["side_file"] = m.side_file;
+  if (!m.side_checksum.empty())
+    j["side_checksum"] = m.side_checksum;
+  if (!m.phases.empty()) {
+    nlohmann::json phases = nlohmann::json::array();
+    for (const ReducedOrderPhase& p : m.phases) {
+      nlohmann::json ph = {{"name", p.name},
+                           {"density", p.density},
+                           {"law", toString(p.law.kind)},
+                           {"C", matrixToJson(p.law.C.matrix())}};
+      if (p.law.gvbo) {
+        nlohmann::json g = {{"E0", p.law.gvbo->E0}, {"nu0", p.law.gvbo->nu0}};
+        for (const auto& [key, member] : gvboTableKeys())
+          g[key] = (*p.law.gvbo).*member;
+        ph["gvbo"] = g;
+      }
+      phases.push_back(ph);
+    }
+    j["phases"] = phases;
+  }
   if (m.dispersion) {
     j["dispersion"] = matrixToJson(*m.dispersion);
     const auto l = dispersionLengths(m);
@@ -184,6 +203,12 @@ std::string exportCard(const Material& m, ExportFormat format) {
   core::checkName(m.name, "material name");
   for (const Ply& p : m.plies)
     core::checkName(p.material, "ply material name");
+  if (m.kind == kReducedOrderKind && format != ExportFormat::Json)
+    throw Error("'" + m.name +
+                    "' is a reduced-order cell, a nonlinear law that no elastic card "
+                    "represents (its C is only the instantaneous stiffness at J = 1); "
+                    "`--format json` exports its data",
+                {"--format", 0, ""});
   switch (format) {
   case ExportFormat::Abaqus:
     return abaqusLike(m, "ANISOTROPIC", true);

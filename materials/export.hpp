@@ -38,7 +38,9 @@ const std::array<std::pair<const char*, ExportFormat>, 5>& exportFormats();
 /// @return the format named @p name; throws lamina::Error (naming --format) otherwise
 ExportFormat parseExportFormat(const std::string& name);
 
-/// @return the card text of @p m in @p format
+/// @return the card text of @p m in @p format. A reduced-order entry (a
+/// nonlinear law) exports as json only; a card format is an error naming
+/// --format.
 std::string exportCard(const Material& m, ExportFormat format);
 
 /// @return a 6x6 matrix as 6 JSON rows of 6 numbers (the "C" of every JSON
@@ -47,7 +49,9 @@ nlohmann::json matrixToJson(const Matrix6& c);
 
 /// @return {"name", "C", "density", "kind", "symmetry", "symmetry_axis",
 /// "anisotropy_index", "engineering": {...}, "thickness", "plies",
-/// "provenance", "side_file"} (optional members only when present).
+/// "provenance", "side_file", "side_checksum", "phases": [{"name",
+/// "density", "law", "C", "gvbo": {E0, nu0, Et, ...}}]} (optional members
+/// only when present).
 nlohmann::json materialToJson(const Material& m);
 
 } // namespace lamina::materials

@@ -7,23 +7,31 @@
 
 namespace lamina::materials {
 
+const std::array<std::pair<const char*, double GvboParameters::*>, 13>& gvboTableKeys() {
+  static const std::array<std::pair<const char*, double GvboParameters::*>, 13> keys{{
+      {"Et", &GvboParameters::Et},
+      {"p", &GvboParameters::p},
+      {"a1", &GvboParameters::a1},
+      {"a2", &GvboParameters::a2},
+      {"a3", &GvboParameters::a3},
+      {"k1", &GvboParameters::k1},
+      {"k2", &GvboParameters::k2},
+      {"k3", &GvboParameters::k3},
+      {"k4", &GvboParameters::k4},
+      {"Em", &GvboParameters::Em},
+      {"A0", &GvboParameters::A0},
+      {"Ac", &GvboParameters::Ac},
+      {"Af", &GvboParameters::Af},
+  }};
+  return keys;
+}
+
 GvboParameters readGvboParameters(const core::TableReader& g, double E0, double nu0) {
   GvboParameters p;
   p.E0 = E0;
   p.nu0 = nu0;
-  p.Et = g.getDouble("Et");
-  p.p = g.getDouble("p");
-  p.a1 = g.getDouble("a1");
-  p.a2 = g.getDouble("a2");
-  p.a3 = g.getDouble("a3");
-  p.k1 = g.getDouble("k1");
-  p.k2 = g.getDouble("k2");
-  p.k3 = g.getDouble("k3");
-  p.k4 = g.getDouble("k4");
-  p.Em = g.getDouble("Em");
-  p.A0 = g.getDouble("A0");
-  p.Ac = g.getDouble("Ac");
-  p.Af = g.getDouble("Af");
+  for (const auto& [key, member] : gvboTableKeys())
+    p.*member = g.getDouble(key);
   return p;
 }
 

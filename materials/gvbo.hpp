@@ -5,7 +5,9 @@
 
 #include "core/toml_reader.hpp"
 
+#include <array>
 #include <string>
+#include <utility>
 
 namespace lamina::materials {
 
@@ -26,8 +28,12 @@ struct GvboParameters {
   double Af = 0;         ///< final isotropic stress (Pa)
 };
 
-/// Reads the GVBO parameters other than E0, nu0 from table @p g (keys Et, p,
-/// a1, a2, a3, k1, k2, k3, k4, Em, A0, Ac, Af; SI units), all required.
+/// The keys of a `gvbo` table (Et, p, a1, a2, a3, k1, k2, k3, k4, Em, A0, Ac,
+/// Af) and the parameter each holds: the one list for reading and writing.
+const std::array<std::pair<const char*, double GvboParameters::*>, 13>& gvboTableKeys();
+
+/// Reads the GVBO parameters other than E0, nu0 from table @p g (the keys of
+/// gvboTableKeys(); SI units), all required.
 GvboParameters readGvboParameters(const core::TableReader& g, double E0, double nu0);
 
 /// Instantaneous isotropic moduli of a GVBO phase at volume ratio J.

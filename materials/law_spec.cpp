@@ -1,10 +1,12 @@
 #include "materials/law_spec.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/toml_reader.hpp"
 #include "materials/gvbo_law.hpp"
 
 #include <cmath>
+#include <ostream>
 
 namespace lamina::materials {
 
@@ -80,6 +82,25 @@ LawPtr LawSpec::make() const {
   }
   LAMINA_CHECK(kind != LawKind::ReducedOrder, kReducedOrderIsAnEntry);
   return std::make_shared<LinearElasticLaw>(kind, C);
+}
+
+void writeLawSpec(std::ostream& os, const LawSpec& law) {
+  LAMINA_CHECK(law.kind != LawKind::ReducedOrder, kReducedOrderIsAnEntry);
+  if (law.kind != LawKind::Gvbo) {
+    os << "law = \"" << toString(LawKind::Anisotropic) << "\"\n";
+    writeMatrix6(os, "C", law.C.matrix());
+    return;
+  }
+  LAMINA_CHECK(law.gvbo.has_value(), "gvbo law without its parameters");
+  const GvboParameters& g = *law.gvbo;
+  os << "law = \"" << toString(LawKind::Gvbo) << "\"\nE = " << core::formatExact(g.E0)
+     << "\nnu = " << core::formatExact(g.nu0) << "\ngvbo = { ";
+  const char* sep = "";
+  for (const auto& [key, member] : gvboTableKeys()) {
+    os << sep << key << " = " << core::formatExact(g.*member);
+    sep = ", ";
+  }
+  os << " }\n";
 }
 
 LawSpec readLawSpec(const core::TableReader& t) {

@@ -13,6 +13,7 @@
 #include "materials/law.hpp"
 #include "materials/stiffness.hpp"
 
+#include <iosfwd>
 #include <optional>
 
 namespace lamina::core {
@@ -31,9 +32,17 @@ struct LawSpec {
 };
 
 /// Reads the law of @p t from key `law` and the keys of that law. Throws
-/// lamina::Error naming the file and key for an unknown law, a missing key,
-/// E <= 0, nu outside (-1, 0.5), or a C that is not symmetric positive definite.
+/// lamina::Error naming the file and key for an unknown law, `law =
+/// "reduced-order"` (a library entry referred to by its name, not a law with
+/// keys), a missing key, E <= 0, nu outside (-1, 0.5), or a C that is not
+/// symmetric positive definite.
 LawSpec readLawSpec(const core::TableReader& t);
+
+/// Writes @p law as TOML lines that readLawSpec reads back exactly: a gvbo
+/// law as `law = "gvbo"`, E, nu and an inline `gvbo` table of its 13
+/// parameters; a linear law as `law = "anisotropic"` and its C (a linear
+/// law is its C; 17 significant digits, bit for bit).
+void writeLawSpec(std::ostream& os, const LawSpec& law);
 
 /// Reads the keys of law @p kind from @p t (as readLawSpec, `law` already known).
 LawSpec readLawConstants(const core::TableReader& t, LawKind kind);

@@ -6,6 +6,7 @@
 #include "core/input_file.hpp"
 #include "core/names.hpp"
 #include "core/toml_reader.hpp"
+#include "materials/law_spec.hpp"
 
 #include <sys/stat.h>
 
@@ -117,18 +118,6 @@ std::string value(const toml::node& n) {
   return quoteBasic(os.str());
 }
 
-/// Writes a 6x6 matrix as 6 rows with 17 significant digits.
-void writeMatrix6(std::ostream& os, const char* k, const Matrix6& c) {
-  os << k << " = [\n";
-  for (int i = 0; i < 6; ++i) {
-    os << "  [";
-    for (int j = 0; j < 6; ++j)
-      os << (j ? ", " : "") << core::formatExact(c(i, j));
-    os << "],\n";
-  }
-  os << "]\n";
-}
-
 /// Permission bits of side files and of the side folder.
 struct FileModes {
   mode_t file = 0644;   ///< a side file's: those of the library
@@ -216,14 +205,28 @@ private:
   std::vector<std::filesystem::path> placed_;
 };
 
+/// @return whether @p s is a fileChecksum(): "fnv1a64:" and 16 lower-case hex digits
+bool isChecksum(const std::string& s) {
+  const std::string prefix = "fnv1a64:";
+  if (s.size() != prefix.size() + 16 || s.compare(0, prefix.size(), prefix) != 0)
+    return false;
+  for (std::size_t i = prefix.size(); i < s.size(); ++i)
+    if (!std::isxdigit(static_cast<unsigned char>(s[i])) ||
+        std::isupper(static_cast<unsigned char>(s[i])))
+      return false;
+  return true;
+}
+
 Material readEntry(const core::TableReader& t, const std::string& name) {
   if (const std::string why = core::nameProblem(name); !why.empty())
     t.failHere("material name " + why + " (names: docs/reliability.md)");
   Material m;
   m.name = name;
   m.kind = t.getString("kind");
-  if (m.kind != "catalog" && m.kind != "homogenized" && m.kind != "layup" && m.kind != "constants")
-    t.fail("kind", "unknown kind '" + m.kind + "' (catalog, homogenized, layup, constants)");
+  if (m.kind != "catalog" && m.kind != "homogenized" && m.kind != "layup" &&
+      m.kind != "constants" && m.kind != kReducedOrderKind)
+    t.fail("kind", "unknown kind '" + m.kind +
+                       "' (catalog, homogenized, layup, constants, reduced-order)");
   m.density = t.getDouble("density");
   m.C = Stiffness(readMatrix6(t, "C", "Pa"));
   if (t.has("dispersion"))
@@ -240,6 +243,21 @@ Material readEntry(const core::TableReader& t, const std::string& name) {
   for (const auto& part : std::filesystem::path(m.side_file))
     if (m.side_file.front() == '/' || part == "..")
       t.fail("side_file", "must be a path inside the library's folder (relative, without '..')");
+  m.side_checksum = t.getString("side_checksum", "");
+  if (!m.side_checksum.empty() && !isChecksum(m.side_checksum))
+    t.fail("side_checksum", "expected \"fnv1a64:\" and 16 hexadecimal digits");
+  for (const core::TableReader& p : t.tableArray("phases")) {
+    ReducedOrderPhase ph;
+    ph.name = p.getString("name");
+    ph.density = p.getDouble("density");
+    ph.law = readLawSpec(p);
+    m.phases.push_back(std::move(ph));
+  }
+  if (m.kind == kReducedOrderKind && m.side_file.empty())
+    t.fail("side_file", "a reduced-order entry needs its side file (the cell's arrays, written "
+                        "by `homogenize --reduced-order`)");
+  if (m.kind == kReducedOrderKind && m.side_checksum.empty())
+    t.fail("side_checksum", "a reduced-order entry needs the checksum of its side file");
   for (const core::TableReader& p : t.tableArray("plies")) {
     m.plies.push_back(
         {p.getString("material"), p.getDouble("angle_deg"), p.getDouble("thickness")});
@@ -262,10 +280,12 @@ Material readEntry(const core::TableReader& t, const std::string& name) {
     validate(m);
   } catch (const Error& e) {
     const std::string msg = e.message();
-    t.fail(msg.rfind("dispersion", 0) == 0  ? "dispersion"
-           : msg.rfind("cell_size", 0) == 0 ? "cell_size"
-                                            : "C",
-           msg);
+    const char* keys[] = {"dispersion", "cell_size", "side_checksum", "phases"};
+    const char* at = "C";
+    for (const char* k : keys)
+      if (msg.rfind(k, 0) == 0)
+        at = k;
+    t.fail(at, msg);
   }
   return m;
 }
@@ -332,6 +352,8 @@ std::string Library::serialize(const std::map<std::string, Material>& entries) {
       os << "thickness = " << core::formatExact(*m.thickness) << "\n";
     if (!m.side_file.empty())
       os << "side_file = " << quoteBasic(m.side_file) << "\n";
+    if (!m.side_checksum.empty())
+      os << "side_checksum = " << quoteBasic(m.side_checksum) << "\n";
     writeMatrix6(os, "C", m.C.matrix());
     if (m.cell_size)
       os << "cell_size = [" << core::formatExact((*m.cell_size)[0]) << ", "
@@ -346,6 +368,11 @@ std::string Library::serialize(const std::map<std::string, Material>& entries) {
            << ", angle_deg = " << core::formatExact(p.angle_deg)
            << ", thickness = " << core::formatExact(p.thickness) << " },\n";
       os << "]\n";
+    }
+    for (const ReducedOrderPhase& p : m.phases) {
+      os << "\n[[" << head << ".phases]]\nname = " << quoteBasic(p.name)
+         << "\ndensity = " << core::formatExact(p.density) << "\n";
+      writeLawSpec(os, p.law);
     }
     if (!m.provenance.empty()) {
       os << "\n[" << head << ".provenance]\n";
@@ -427,7 +454,9 @@ void Library::add(std::vector<Addition> additions, bool overwrite) {
         sides.push_back(std::make_unique<SideFiles>(folder() / sideFolder(), modes));
         const std::string stem = sides.back()->open(m.name);
         m.side_file = (sideFolder() / (stem + ".h5")).string();
-        a.write_side(sides.back()->stage() / (stem + ".h5"));
+        const std::filesystem::path h5 = sides.back()->stage() / (stem + ".h5");
+        a.write_side(h5);
+        m.side_checksum = fileChecksum(h5, "side file"); // of the bytes committed
         sides.back()->place();
       }
       updated[m.name] = m;

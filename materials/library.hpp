@@ -6,7 +6,11 @@
 /// `format = "lamina-materials-library"` and `version = 1`, then one table
 /// `[materials."NAME"]` per entry with `kind`, `density`, `C` (6 rows of 6,
 /// Pa, lamina order, 17 significant digits), optional `thickness`, `plies`,
-/// `side_file` and a `provenance` sub-table.
+/// `side_file`, `side_checksum` (fileChecksum of the side file) and a
+/// `provenance` sub-table. A `reduced-order` entry (a reduced-order cell,
+/// reduced_order_law.hpp) also has `[[materials."NAME".phases]]` tables
+/// (name, density and the law as writeLawSpec writes it) and requires its
+/// side file (the arrays of writeReducedOrderArrays) and its checksum.
 ///
 /// Contract: add() and remove() take an exclusive lock on "<file>.lock",
 /// re-read the file, apply the change and replace the file atomically (write
@@ -73,7 +77,8 @@ public:
   /// folder "<stem>.side/" (beside the library file, symlinks resolved)
   /// under a name unique to this transaction, "<name>.XXXXXX.h5"; its files
   /// are renamed into the side folder, m.side_file is set to that path
-  /// (relative to folder()) and the library is written: the commit point.
+  /// (relative to folder()), m.side_checksum to the fileChecksum of the .h5
+  /// written, and the library is written: the commit point.
   /// On any failure the new files are removed and the library is unchanged;
   /// after the commit the files of a replaced entry are removed.
   void add(Material m, bool overwrite, const SideFileWriter& write_side);

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <set>
 #include <cmath>
 
 namespace lamina::materials {
@@ -26,6 +27,38 @@ void validate(const Material& m) {
     validateDispersion(*m.dispersion, m.name);
   if (m.cell_size && !(m.cell_size->minCoeff() > 0 && m.cell_size->allFinite()))
     throw Error("cell_size must be positive and finite (m)", ctx);
+  if (!m.side_checksum.empty() && m.side_file.empty())
+    throw Error("side_checksum without a side_file", ctx);
+  if (m.kind == kReducedOrderKind)
+    validateReducedOrderPhases(m.phases, m.name);
+  else if (!m.phases.empty())
+    throw Error("phases belong to entries of kind \"" + std::string(kReducedOrderKind) +
+                    "\", not \"" + m.kind + "\"",
+                ctx);
+}
+
+void validateReducedOrderPhases(const std::vector<ReducedOrderPhase>& phases,
+                                const std::string& name) {
+  const ErrorContext ctx{"", 0, name};
+  if (phases.empty())
+    throw Error("phases: a reduced-order entry needs at least one phase", ctx);
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < phases.size(); ++i) {
+    const ReducedOrderPhase& p = phases[i];
+    const std::string where = "phases[" + std::to_string(i) + "] ('" + p.name + "'): ";
+    if (p.name.empty())
+      throw Error("phases[" + std::to_string(i) + "]: the phase name must not be empty", ctx);
+    if (!seen.insert(p.name).second)
+      throw Error(where + "two phases have this name", ctx);
+    if (!(p.density > 0) || !std::isfinite(p.density))
+      throw Error(where + "density must be positive and finite (kg/m^3)", ctx);
+    try {
+      p.law.C.validate("law");
+      p.law.make(); // refuses a reduced-order law, checks the GVBO parameters
+    } catch (const Error& e) {
+      throw Error(where + e.message(), ctx);
+    }
+  }
 }
 
 void validateDispersion(const Matrix6& D, const std::string& name) {

@@ -61,10 +61,24 @@ void validateDispersion(const Matrix6& D, const std::string& name);
 /// follows omega^2 = c^2 k^2 / (1 + l_I^2 k^2). Zero without dispersion.
 std::array<double, 6> dispersionLengths(const Material& m);
 
+/// The kind of a reduced-order cell entry ("reduced-order").
+inline constexpr const char* kReducedOrderKind = "reduced-order";
+
 /// Throws lamina::Error naming the material unless C is symmetric positive
 /// definite, the density is finite and positive and the thickness (if any)
-/// is positive, and the dispersion (if any) is finite, symmetric and
-/// positive semi-definite and the cell size positive.
+/// is positive, the dispersion (if any) is finite, symmetric and positive
+/// semi-definite and the cell size positive, a side_checksum comes with a
+/// side_file, and phases are those of a reduced-order entry
+/// (validateReducedOrderPhases) or absent. (A reduced-order entry's side
+/// file and checksum are set when the library writes it, and required
+/// where the library reads it.)
 void validate(const Material& m);
+
+/// Throws lamina::Error naming the entry @p name and the phase ("phases[i]
+/// ('soft'): ...") unless there is at least one phase, every phase has a
+/// unique non-empty name, a positive density and a valid law that is not
+/// reduced-order itself.
+void validateReducedOrderPhases(const std::vector<ReducedOrderPhase>& phases,
+                                const std::string& name);
 
 } // namespace lamina::materials

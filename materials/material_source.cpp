@@ -24,13 +24,42 @@ const Catalog* MaterialSource::catalog() {
   return catalog_.get();
 }
 
-LawPtr MaterialSource::law(const std::string& name) {
+ReducedOrderModel readReducedOrderEntry(const Library& library, const Material& m) {
+  const ErrorContext ctx{"", 0, m.name};
+  if (m.kind != kReducedOrderKind)
+    throw Error("entry of kind \"" + m.kind + "\" is not a reduced-order cell", ctx);
+  const std::filesystem::path file = library.folder() / m.side_file;
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec))
+    throw Error("the side file of this reduced-order entry, " + file.string() +
+                    ", is missing (write the entry again with `homogenize --reduced-order`)",
+                ctx);
+  const std::string sum = fileChecksum(file, "side file of '" + m.name + "'");
+  if (sum != m.side_checksum)
+    throw Error("the side file " + file.string() + " has checksum " + sum + " but the library " +
+                    "recorded " + m.side_checksum +
+                    ": it changed after the library wrote it; refusing to use it",
+                ctx);
+  ReducedOrderModel model;
+  model.phases = m.phases;
+  try {
+    readReducedOrderArrays(file, model);
+  } catch (const Error& e) {
+    throw Error(e.what(), ctx);
+  }
+  return model;
+}
+
+LawPtr MaterialSource::law(const std::string& name, const ReducedOrderOptions& options) {
   if (!library().contains(name)) {
     const Catalog* cat = catalog();
     if (cat && cat->contains(name))
       return cat->get(name).makeLaw();
   }
-  return std::make_shared<LinearElasticLaw>(LawKind::Anisotropic, get(name).C);
+  const Material m = get(name);
+  if (m.kind == kReducedOrderKind)
+    return std::make_shared<ReducedOrderLaw>(name, readReducedOrderEntry(library(), m), options);
+  return std::make_shared<LinearElasticLaw>(LawKind::Anisotropic, m.C);
 }
 
 Material MaterialSource::get(const std::string& name) {

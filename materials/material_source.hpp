@@ -6,12 +6,21 @@
 #include "materials/catalog.hpp"
 #include "materials/law.hpp"
 #include "materials/library.hpp"
+#include "materials/reduced_order_law.hpp"
 
 #include <filesystem>
 #include <memory>
 #include <string>
 
 namespace lamina::materials {
+
+/// The cell of the reduced-order entry @p m of @p library: its phases from
+/// the entry, its arrays from its side file (relative to library.folder()).
+/// Throws lamina::Error naming the entry and the file when the entry is not
+/// reduced-order, the side file is missing, its fileChecksum differs from
+/// the entry's side_checksum (changed after the library wrote it) or it is
+/// malformed (readReducedOrderArrays).
+ReducedOrderModel readReducedOrderEntry(const Library& library, const Material& m);
 
 /// The library and the catalog, each loaded on first use. Contract: get()
 /// returns the library entry of that name if there is one (the library
@@ -27,10 +36,11 @@ public:
 
   /// @return the material named @p name (see the class contract)
   Material get(const std::string& name);
-  /// @return the constitutive law of @p name: a library entry is linear
-  /// elastic with its C (LawKind::Anisotropic), a catalog entry has its own
-  /// law (GVBO included); unknown names as get()
-  LawPtr law(const std::string& name);
+  /// @return the constitutive law of @p name: a reduced-order library entry
+  /// is a ReducedOrderLaw with @p options (readReducedOrderEntry), another
+  /// library entry is linear elastic with its C (LawKind::Anisotropic), a
+  /// catalog entry has its own law (GVBO included); unknown names as get()
+  LawPtr law(const std::string& name, const ReducedOrderOptions& options = {});
   /// @return the library (loaded now if not yet)
   const Library& library();
 

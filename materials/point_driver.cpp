@@ -151,6 +151,13 @@ void checkFinalStrain(DrivePath path, double to, const std::string& option) {
 
 namespace {
 
+/// Writes "," (unless @p first) and @p x with 17 significant digits.
+void csvNumber(std::ostream& os, double x, bool first = false) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, first ? "%.17g" : ",%.17g", x);
+  os << buf;
+}
+
 /// Step @p n of drive(): the trial at the path's strain (with the lateral
 /// Newton of uniaxial stress, updating @p l), reported and committed.
 DriveRow driveStep(Point& point, const DriveOptions& o, int n, double dt, Eigen::Vector2d& l,
@@ -209,21 +216,51 @@ std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& o,
   return rows;
 }
 
+std::function<void(const DriveStep&)> recordNonlinearDispersion(const ReducedOrderLaw& law,
+                                                                std::vector<DispersionRow>& rows) {
+  return [&law, &rows](const DriveStep& s) {
+    std::vector<double> scratch(static_cast<std::size_t>(law.stateSize()));
+    ReducedOrderStepInfo info;
+    Vector6 sigma;
+    law.updateWithInfo(s.step, s.state_n, scratch.data(), sigma, nullptr, &info);
+    const Matrix6 D = law.nonlinearDispersion(info);
+    const double lin = law.model().D_lin.cwiseAbs().maxCoeff();
+    const double nonlin = D.cwiseAbs().maxCoeff();
+    DispersionRow row;
+    row.t = s.t;
+    row.D = Stiffness(D).rotated(s.R).matrix();
+    row.ratio = lin > 0 ? nonlin / lin : (nonlin > 0 ? std::numeric_limits<double>::infinity() : 0);
+    rows.push_back(row);
+  };
+}
+
+void writeDispersionCsv(const std::filesystem::path& path, const std::vector<DispersionRow>& rows) {
+  std::ostringstream os;
+  os << "t";
+  for (int i = 0; i < 6; ++i)
+    for (int j = i; j < 6; ++j)
+      os << ",D" << i + 1 << j + 1;
+  os << ",max_ratio\n";
+  for (const DispersionRow& r : rows) {
+    csvNumber(os, r.t, true);
+    for (int i = 0; i < 6; ++i)
+      for (int j = i; j < 6; ++j)
+        csvNumber(os, r.D(i, j));
+    csvNumber(os, r.ratio);
+    os << "\n";
+  }
+  core::writeFileAtomically(path, os.str());
+}
+
 void writeDriveCsv(const std::filesystem::path& path, const std::vector<DriveRow>& rows) {
   std::ostringstream os;
   os << kDriveHeader << "\n";
-  char buf[32];
   for (const DriveRow& r : rows) {
-    std::snprintf(buf, sizeof buf, "%.17g", r.t);
-    os << buf;
-    for (int i = 0; i < 6; ++i) {
-      std::snprintf(buf, sizeof buf, ",%.17g", r.eps[i]);
-      os << buf;
-    }
-    for (int i = 0; i < 6; ++i) {
-      std::snprintf(buf, sizeof buf, ",%.17g", r.sigma[i]);
-      os << buf;
-    }
+    csvNumber(os, r.t, true);
+    for (int i = 0; i < 6; ++i)
+      csvNumber(os, r.eps[i]);
+    for (int i = 0; i < 6; ++i)
+      csvNumber(os, r.sigma[i]);
     os << "\n";
   }
   core::writeFileAtomically(path, os.str());

@@ -18,6 +18,7 @@
 /// Cauchy sigma (Pa).
 
 #include "materials/law.hpp"
+#include "materials/reduced_order_law.hpp"
 
 #include <filesystem>
 #include <functional>
@@ -94,6 +95,28 @@ struct DriveStep {
 /// of its message, its context kept.
 std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& options,
                             const std::function<void(const DriveStep&)>& observer = {});
+
+/// One row of `materials drive --nonlinear-dispersion`.
+struct DispersionRow {
+  double t = 0;                 ///< s
+  Matrix6 D = Matrix6::Zero();  ///< D_nonlin of eq. 40, global frame (kg/m, lamina order)
+  double ratio = 0;             ///< max |D_nonlin| / max |D_lin| (law's frame)
+};
+
+/// @return an observer for drive() that appends, at every accepted step,
+/// D_nonlin of @p law (ReducedOrderLaw::nonlinearDispersion of the step,
+/// evaluated again with updateWithInfo from the same inputs, so of the same
+/// converged strains) to @p rows: rotated to the global frame with the
+/// step's R (a fourth-order tensor, as Stiffness::rotated), and its ratio
+/// max |D_nonlin| / max |D_lin| taken in the law's frame (D_lin: the cell's
+/// linear dispersion; inf when D_lin is zero and D_nonlin is not).
+std::function<void(const DriveStep&)> recordNonlinearDispersion(const ReducedOrderLaw& law,
+                                                                std::vector<DispersionRow>& rows);
+
+/// Writes @p rows to @p path (17 significant digits) under the header
+/// "t,D11,D12,...,D16,D22,...,D66,max_ratio": the 21 components of the upper
+/// triangle row by row (lamina order xx yy zz xy yz xz, 1-based), kg/m.
+void writeDispersionCsv(const std::filesystem::path& path, const std::vector<DispersionRow>& rows);
 
 /// The CSV header of `materials drive`.
 inline constexpr const char* kDriveHeader =

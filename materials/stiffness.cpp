@@ -1,10 +1,12 @@
 #include "materials/stiffness.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/toml_reader.hpp"
 #include "materials/conversions.hpp"
 
 #include <cmath>
+#include <ostream>
 
 namespace lamina::materials {
 
@@ -22,6 +24,17 @@ Matrix6 readMatrix6(const core::TableReader& t, std::string_view key, const std:
       c(i, j) = row[static_cast<std::size_t>(j)];
   }
   return c;
+}
+
+void writeMatrix6(std::ostream& os, std::string_view key, const Matrix6& c) {
+  os << key << " = [\n";
+  for (int i = 0; i < 6; ++i) {
+    os << "  [";
+    for (int j = 0; j < 6; ++j)
+      os << (j ? ", " : "") << core::formatExact(c(i, j));
+    os << "],\n";
+  }
+  os << "]\n";
 }
 
 Stiffness Stiffness::isotropic(double E, double nu) {

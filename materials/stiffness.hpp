@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 
 #include <array>
+#include <iosfwd>
 #include <string>
 #include <string_view>
 
@@ -93,6 +94,10 @@ private:
 /// (Stiffness::validate).
 Matrix6 readMatrix6(const core::TableReader& t, std::string_view key,
                     const std::string& unit = "Pa");
+
+/// Writes @p c as TOML key @p key: 6 rows of 6 numbers with 17 significant
+/// digits (read back bit for bit by readMatrix6), one row per line.
+void writeMatrix6(std::ostream& os, std::string_view key, const Matrix6& c);
 
 /// Rotation matrix of @p radians about the unit axis (x=0, y=1, z=2).
 Eigen::Matrix3d axisRotation(int axis, double radians);

@@ -7,6 +7,7 @@
 
 #include "laminate_reduced_order.hpp"
 #include "materials/law_spec.hpp"
+#include "materials/library.hpp"
 #include "materials/reduced_order.hpp"
 
 #include <Eigen/Core>
@@ -100,6 +101,30 @@ inline materials::ReducedOrderModel laminateCell(const std::vector<materials::La
 inline materials::ReducedOrderModel polyureaLaminate(bool synthetic_micro_inertia = false) {
   return laminateCell({softGvbo(), hardElastic()}, {0, 1}, {0.81, 0.19},
                       synthetic_micro_inertia);
+}
+
+/// The library entry of @p model named @p name (kind "reduced-order", its
+/// phases, C and density; side file and checksum set by Library::add).
+inline materials::Material reducedOrderEntry(const std::string& name,
+                                             const materials::ReducedOrderModel& model) {
+  materials::Material m;
+  m.name = name;
+  m.kind = materials::kReducedOrderKind;
+  m.C = materials::Stiffness(model.C);
+  m.density = model.density;
+  m.phases = model.phases;
+  m.provenance.insert("tool", "test");
+  return m;
+}
+
+/// Adds @p model to the library at @p library as entry @p name, its arrays
+/// in a side file written by writeReducedOrderArrays.
+inline void addReducedOrderEntry(const std::filesystem::path& library, const std::string& name,
+                                 const materials::ReducedOrderModel& model) {
+  materials::Library(library).add(reducedOrderEntry(name, model), false,
+                                  [&model](const std::filesystem::path& h5) {
+                                    materials::writeReducedOrderArrays(h5, model);
+                                  });
 }
 
 } // namespace lamina::test
