@@ -176,7 +176,7 @@ CLI::App* addDriveCommand(CLI::App& app, Args& a) {
   cmd->add_option("--nonlinear-dispersion", a.nonlinear_dispersion,
                   "reduced-order entries: CSV of D_nonlin (eq. 40, kg/m) along the history");
   cmd->add_option("--newton-iterations", a.newton_iterations,
-                  "reduced-order entries: Newton cap per step (default 25)")
+                  "reduced-order entries: Newton cap per step (default 50)")
       ->check(CLI::Range(1, 10000));
   cmd->add_option("--newton-tolerance", a.newton_tolerance,
                   "reduced-order entries: Newton tolerance, relative strain (default 1e-10)")

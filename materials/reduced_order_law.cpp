@@ -211,7 +211,8 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
       for (std::size_t l = 0; l < m; ++l)
         rb -= model_.P[uz(b * n + nonlinear_[l])] * t.mu[l];
       r.segment<6>(6 * idx(k)) = rb;
-      scale = std::max(scale, t.eps[k].cwiseAbs().maxCoeff());
+      // the size of the terms r sums: its round-off is relative to them
+      scale = std::max({scale, t.eps[k].cwiseAbs().maxCoeff(), t.mu[k].cwiseAbs().maxCoeff()});
     }
     norm = r.lpNorm<Eigen::Infinity>();
     if (norm <= options_.tolerance * scale)

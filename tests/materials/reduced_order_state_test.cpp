@@ -103,7 +103,7 @@ TEST(ReducedOrderState, StateMayAliasThePreviousState) {
 
 // The stored partition strains average to the coarse strain (sum c A = I and
 // sum c P = 0 hold for any cell) up to the Newton residual, at most the
-// tolerance times the strain scale; the stored partition stresses (GVBO: its
+// tolerance times the Newton's scale (strains and eigenstrains); the stored partition stresses (GVBO: its
 // state; elastic: L eps) average to the returned stress to round-off (1e-12
 // relative: both are the same sums of the accepted partition strains).
 TEST(ReducedOrderState, PartitionStrainsAndStressesAverageToTheCoarseOnes) {
@@ -120,16 +120,18 @@ TEST(ReducedOrderState, PartitionStrainsAndStressesAverageToTheCoarseOnes) {
                state.data(), sigma, nullptr);
   }
   Vector6 eps_avg = Vector6::Zero(), sig_avg = Vector6::Zero();
-  double scale = dir.cwiseAbs().maxCoeff();
+  double scale = dir.cwiseAbs().maxCoeff(); // of the Newton: strains and eigenstrains
   for (int a = 0; a < m.partitions(); ++a) {
+    const auto ua = static_cast<std::size_t>(a);
     const double* block = state.data() + law.stateOffset(a);
     const Vector6 ea = Eigen::Map<const Vector6>(block);
-    eps_avg += m.fraction[static_cast<std::size_t>(a)] * ea;
-    scale = std::max(scale, ea.cwiseAbs().maxCoeff());
-    const auto& ph = m.phases[static_cast<std::size_t>(m.partition_phase[static_cast<std::size_t>(a)])];
-    sig_avg += m.fraction[static_cast<std::size_t>(a)] *
-               (ph.law.gvbo ? Vector6(Eigen::Map<const Vector6>(block + 6 + mat::GvboState::kSigma))
-                            : Vector6(ph.law.C.matrix() * ea));
+    const mat::LawSpec& spec = m.phases[static_cast<std::size_t>(m.partition_phase[ua])].law;
+    const Vector6 sa = spec.gvbo ? Vector6(Eigen::Map<const Vector6>(block + 6 + mat::GvboState::kSigma))
+                                 : Vector6(spec.C.matrix() * ea);
+    eps_avg += m.fraction[ua] * ea;
+    sig_avg += m.fraction[ua] * sa;
+    const Vector6 mu = ea - spec.C.matrix().inverse() * sa;
+    scale = std::max({scale, ea.cwiseAbs().maxCoeff(), mu.cwiseAbs().maxCoeff()});
   }
   EXPECT_LE((eps_avg - dir).cwiseAbs().maxCoeff(), law.options().tolerance * scale);
   EXPECT_LE((sig_avg - sigma).cwiseAbs().maxCoeff(), 1e-12 * sigma.cwiseAbs().maxCoeff());

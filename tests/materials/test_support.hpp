@@ -133,6 +133,26 @@ inline RunResult runMaterials(const TempDir& dir, const std::filesystem::path& l
   return r;
 }
 
+/// The numeric rows of CSV file @p path after its header line (returned in
+/// @p header when not null); every cell parsed with std::stod.
+inline std::vector<std::vector<double>> readCsvRows(const std::filesystem::path& path,
+                                                    std::string* header = nullptr) {
+  std::istringstream in(readFile(path));
+  std::string line;
+  std::getline(in, line);
+  if (header)
+    *header = line;
+  std::vector<std::vector<double>> rows;
+  while (std::getline(in, line)) {
+    std::vector<double> v;
+    std::istringstream items(line);
+    for (std::string item; std::getline(items, item, ',');)
+      v.push_back(std::stod(item));
+    rows.push_back(v);
+  }
+  return rows;
+}
+
 /// Number of lines of @p text ('\n'-terminated; a trailing partial line counts).
 inline int lineCount(const std::string& text) {
   int n = 0;
