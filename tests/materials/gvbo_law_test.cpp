@@ -12,6 +12,7 @@
 #include "materials/gvbo_law.hpp"
 #include "materials/kinematics.hpp"
 #include "materials/point_driver.hpp"
+#include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -174,18 +175,9 @@ TEST(GvboLaw, TangentMatchesFiniteDifferences) {
     Vector6 sigma;
     mat::Matrix6 T;
     law.update(step, run.state.data(), out.data(), sigma, &T);
-    mat::Matrix6 Tfd;
-    const double h = 1e-8;
-    for (int j = 0; j < 6; ++j) {
-      mat::PointStep sp = step, sm = step;
-      sp.eps[j] += h;
-      sm.eps[j] -= h;
-      // J follows the strain but the tangent holds J fixed: keep J as in step
-      Vector6 a, b;
-      law.update(sp, run.state.data(), out.data(), a, nullptr);
-      law.update(sm, run.state.data(), out.data(), b, nullptr);
-      Tfd.col(j) = (a - b) / (2 * h);
-    }
+    // J follows the strain but the tangent holds J fixed: keep J as in step
+    const mat::Matrix6 Tfd =
+        lamina::test::centralDifferenceTangent(law, step, run.state.data(), 1e-8);
     EXPECT_LE((T - Tfd).cwiseAbs().maxCoeff(), 1e-5 * T.cwiseAbs().maxCoeff())
         << "dt " << dt << "\nT\n"
         << T << "\nFD\n"

@@ -6,6 +6,7 @@
 /// chapter, Table 11) and an elastic hard phase (E 890 MPa, nu 0.491).
 
 #include "laminate_reduced_order.hpp"
+#include "materials/law.hpp"
 #include "materials/law_spec.hpp"
 #include "materials/library.hpp"
 #include "materials/reduced_order.hpp"
@@ -101,6 +102,22 @@ inline materials::ReducedOrderModel laminateCell(const std::vector<materials::La
 inline materials::ReducedOrderModel polyureaLaminate(bool synthetic_micro_inertia = false) {
   return laminateCell({softGvbo(), hardElastic()}, {0, 1}, {0.81, 0.19},
                       synthetic_micro_inertia);
+}
+
+/// Drives @p law from its initial state along eps = E i / @p steps (i = 1..steps,
+/// small strain: J = 1 + tr eps), @p dt per step, into @p state; @return the final strain.
+inline Vec6 loadAlong(const materials::ConstitutiveLaw& law, const Vec6& E, int steps, double dt,
+                      std::vector<double>& state) {
+  state.assign(static_cast<std::size_t>(law.stateSize()), 0.0);
+  law.initState(state.data());
+  Vec6 eps = Vec6::Zero(), sigma;
+  for (int i = 1; i <= steps; ++i) {
+    const Vec6 next = E * i / steps;
+    const materials::PointStep s{eps, next, 1 + eps.head<3>().sum(), 1 + next.head<3>().sum(), dt};
+    law.update(s, state.data(), state.data(), sigma, nullptr);
+    eps = next;
+  }
+  return eps;
 }
 
 /// The library entry of @p model named @p name (kind "reduced-order", its

@@ -53,17 +53,11 @@ TEST(ReducedOrderNonlinearDispersion, IsEq40WithTheEigenstrainSensitivities) {
   const mat::ReducedOrderModel m = test::polyureaLaminate(true);
   const mat::ReducedOrderLaw law("polyurea-laminate", m, {1e-14, 25});
   ASSERT_EQ(law.nonlinearPartitions(), std::vector<int>{0});
-  std::vector<double> state(static_cast<std::size_t>(law.stateSize()));
-  law.initState(state.data());
   Vector6 E;
   E << 0.05, 0.01, 0.03, 0.04, 0.01, -0.03;
-  Vector6 eps = Vector6::Zero(), sigma;
-  for (int i = 1; i <= 10; ++i) {
-    const Vector6 next = E * i / 10.0;
-    const mat::PointStep s{eps, next, 1 + eps.head<3>().sum(), 1 + next.head<3>().sum(), 1e-2};
-    law.update(s, state.data(), state.data(), sigma, nullptr);
-    eps = next;
-  }
+  std::vector<double> state;
+  const Vector6 eps = test::loadAlong(law, E, 10, 1e-2, state);
+  Vector6 sigma;
   Vector6 de;
   de << 0.002, -0.001, 0.0005, 0.003, -0.002, 0.001;
   const mat::PointStep step{eps, eps + de, 1 + eps.head<3>().sum(),

@@ -6,6 +6,7 @@
 #include "reduced_order_cells.hpp"
 
 #include "materials/reduced_order_law.hpp"
+#include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,17 +26,11 @@ using mat::Vector6;
 // 5e-8; 1e-6 leaves a factor 20 above both.
 TEST(ReducedOrderTangent, MatchesCentralDifferencesOfUpdate) {
   const mat::ReducedOrderLaw law("polyurea-laminate", test::polyureaLaminate(), {1e-14, 25});
-  std::vector<double> state(static_cast<std::size_t>(law.stateSize()));
-  law.initState(state.data());
   Vector6 E;
   E << 0.05, 0.01, 0.03, 0.04, 0.01, -0.03;
-  Vector6 eps = Vector6::Zero(), sigma;
-  for (int i = 1; i <= 10; ++i) {
-    const Vector6 next = E * i / 10.0;
-    const mat::PointStep s{eps, next, 1 + eps.head<3>().sum(), 1 + next.head<3>().sum(), 1e-2};
-    law.update(s, state.data(), state.data(), sigma, nullptr);
-    eps = next;
-  }
+  std::vector<double> state;
+  const Vector6 eps = test::loadAlong(law, E, 10, 1e-2, state);
+  Vector6 sigma;
   for (int a = 0; a < 2; ++a) {
     const Eigen::Map<const Vector6> ea(state.data() + law.stateOffset(a));
     ASSERT_GT(ea.head<3>().sum(), 1e-3) << "partition " << a << " is in tension (J > 1)";
@@ -46,18 +41,9 @@ TEST(ReducedOrderTangent, MatchesCentralDifferencesOfUpdate) {
     const mat::PointStep step{eps, eps + de, 1 + eps.head<3>().sum(),
                               1 + (eps + de).head<3>().sum(), dt};
     std::vector<double> out(state.size());
-    Matrix6 T, Tfd;
+    Matrix6 T;
     law.update(step, state.data(), out.data(), sigma, &T);
-    const double h = 1e-8;
-    for (int j = 0; j < 6; ++j) {
-      mat::PointStep sp = step, sm = step;
-      sp.eps[j] += h;
-      sm.eps[j] -= h;
-      Vector6 a, b;
-      law.update(sp, state.data(), out.data(), a, nullptr);
-      law.update(sm, state.data(), out.data(), b, nullptr);
-      Tfd.col(j) = (a - b) / (2 * h);
-    }
+    const Matrix6 Tfd = test::centralDifferenceTangent(law, step, state.data(), 1e-8);
     EXPECT_LE((T - Tfd).cwiseAbs().maxCoeff(), 1e-6 * T.cwiseAbs().maxCoeff())
         << "dt " << dt << "\nT\n"
         << T << "\nFD\n"

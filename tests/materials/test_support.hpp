@@ -5,6 +5,7 @@
 /// `materials` program as a child process.
 
 #include "../core/test_util.hpp"
+#include "materials/law.hpp"
 #include "materials/stiffness.hpp"
 
 #include <gtest/gtest.h>
@@ -95,6 +96,26 @@ inline materials::Matrix6 rotateByDefinition(const materials::Matrix6& c,
       out(a, b) = s;
     }
   return out;
+}
+
+/// Central differences of @p law's update() from @p state_n in the strain at
+/// t_{n+1}, step @p h (everything else of @p step held, J included, as the
+/// laws' tangents hold it): the oracle of consistent tangents.
+inline materials::Matrix6 centralDifferenceTangent(const materials::ConstitutiveLaw& law,
+                                                   const materials::PointStep& step,
+                                                   const double* state_n, double h) {
+  std::vector<double> out(static_cast<std::size_t>(law.stateSize()));
+  materials::Matrix6 T;
+  for (int j = 0; j < 6; ++j) {
+    materials::PointStep sp = step, sm = step;
+    sp.eps[j] += h;
+    sm.eps[j] -= h;
+    materials::Vector6 a, b;
+    law.update(sp, state_n, out.data(), a, nullptr);
+    law.update(sm, state_n, out.data(), b, nullptr);
+    T.col(j) = (a - b) / (2 * h);
+  }
+  return T;
 }
 
 /// Result of running a program.
