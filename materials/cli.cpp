@@ -17,8 +17,8 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
-#include <functional>
 #include <ctime>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -334,8 +334,8 @@ void driveEntry(Args a, const std::filesystem::path& library) {
   std::vector<mat::DispersionRow> dispersion;
   std::function<void(const mat::DriveStep&)> observer;
   if (!a.nonlinear_dispersion.empty())
-    observer = mat::recordNonlinearDispersion(dynamic_cast<const mat::ReducedOrderLaw&>(*law),
-                                              dispersion);
+    observer =
+        mat::recordNonlinearDispersion(dynamic_cast<const mat::ReducedOrderLaw&>(*law), dispersion);
   const std::vector<mat::DriveRow> rows = mat::drive(*law, a.drive, observer);
   mat::writeDriveCsv(a.out, rows);
   if (!a.nonlinear_dispersion.empty())
@@ -370,8 +370,9 @@ void showReducedOrder(const mat::Library& lib, const mat::Material& m, nlohmann:
               << (count[p] == 1 ? " partition" : " partitions") << "\n";
   }
   std::cout << "  partitions " << law.model().partitions() << ", "
-            << law.nonlinearPartitions().size() << " nonlinear (the Newton unknowns: "
-            << 6 * law.nonlinearPartitions().size() << " per point)\n"
+            << law.nonlinearPartitions().size()
+            << " nonlinear (the Newton unknowns: " << 6 * law.nonlinearPartitions().size()
+            << " per point)\n"
             << "  state " << law.stateSize()
             << " doubles per point (per partition: its strain, 6, then its law's state)\n";
 }

@@ -40,8 +40,8 @@ std::string lawKindNames() {
 }
 
 LinearElasticLaw::LinearElasticLaw(LawKind kind, const Stiffness& C) : kind_(kind), C_(C) {
-  LAMINA_CHECK(kind != LawKind::Gvbo && kind != LawKind::ReducedOrder,
-               "the ", toString(kind), " law is not linear elasticity");
+  LAMINA_CHECK(kind != LawKind::Gvbo && kind != LawKind::ReducedOrder, "the ", toString(kind),
+               " law is not linear elasticity");
 }
 
 void LinearElasticLaw::update(const PointStep& step, const double*, double*, Vector6& sigma,

@@ -225,8 +225,8 @@ Material readEntry(const core::TableReader& t, const std::string& name) {
   m.kind = t.getString("kind");
   if (m.kind != "catalog" && m.kind != "homogenized" && m.kind != "layup" &&
       m.kind != "constants" && m.kind != kReducedOrderKind)
-    t.fail("kind", "unknown kind '" + m.kind +
-                       "' (catalog, homogenized, layup, constants, reduced-order)");
+    t.fail("kind",
+           "unknown kind '" + m.kind + "' (catalog, homogenized, layup, constants, reduced-order)");
   m.density = t.getDouble("density");
   m.C = Stiffness(readMatrix6(t, "C", "Pa"));
   if (t.has("dispersion"))

@@ -6,8 +6,8 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
-#include <set>
 #include <cmath>
+#include <set>
 
 namespace lamina::materials {
 

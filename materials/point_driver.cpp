@@ -208,8 +208,7 @@ std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& o,
       rows.push_back(driveStep(point, o, n, dt, l, observer));
     } catch (const Error& e) {
       // the step and its time in front, the law's context (its entry) kept
-      throw Error(detail::concat("step ", n, " of ", total, " (t = ", n * dt, " s): ",
-                                 e.message()),
+      throw Error(detail::concat("step ", n, " of ", total, " (t = ", n * dt, " s): ", e.message()),
                   e.context());
     }
   }

@@ -79,9 +79,9 @@ struct DriveRow {
 /// One accepted step, as drive() reports it to an observer (for outputs
 /// beyond the stress, e.g. a reduced-order law's nonlinear dispersion).
 struct DriveStep {
-  int n = 0;                  ///< step number (1-based)
-  double t = 0;               ///< time at the end of the step (s)
-  PointStep step;             ///< the step in the law's rotation-free frame
+  int n = 0;                       ///< step number (1-based)
+  double t = 0;                    ///< time at the end of the step (s)
+  PointStep step;                  ///< the step in the law's rotation-free frame
   const double* state_n = nullptr; ///< the law's state at t_n (stateSize() doubles)
   /// rotation from the rotation-free frame to the global one (identity for
   /// small kinematics): a tensor X of the law's frame is R X R^T globally
@@ -98,9 +98,9 @@ std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& opti
 
 /// One row of `materials drive --nonlinear-dispersion`.
 struct DispersionRow {
-  double t = 0;                 ///< s
-  Matrix6 D = Matrix6::Zero();  ///< D_nonlin of eq. 40, global frame (kg/m, lamina order)
-  double ratio = 0;             ///< max |D_nonlin| / max |D_lin| (law's frame)
+  double t = 0;                ///< s
+  Matrix6 D = Matrix6::Zero(); ///< D_nonlin of eq. 40, global frame (kg/m, lamina order)
+  double ratio = 0;            ///< max |D_nonlin| / max |D_lin| (law's frame)
 };
 
 /// @return an observer for drive() that appends, at every accepted step,

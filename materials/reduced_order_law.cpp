@@ -257,8 +257,8 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
 Matrix6 ReducedOrderLaw::nonlinearDispersion(const ReducedOrderStepInfo& info) const {
   const Index rows = 6 * idx(nonlinear_.size());
   LAMINA_CHECK(info.dmu_deps.rows() == rows && info.dmu_deps.cols() == 6,
-               "nonlinear dispersion of '", entry_, "': d mu / d eps^c is ",
-               info.dmu_deps.rows(), " x ", info.dmu_deps.cols(), ", expected ", rows, " x 6");
+               "nonlinear dispersion of '", entry_, "': d mu / d eps^c is ", info.dmu_deps.rows(),
+               " x ", info.dmu_deps.cols(), ", expected ", rows, " x 6");
   if (rows == 0)
     return Matrix6::Zero(); // every d mu is zero
   const Eigen::MatrixXd& M = info.dmu_deps;

@@ -23,7 +23,8 @@
 /// form at t_{n+1} (the same equations; it needs no stress of t_n and does
 /// not accumulate the Newton residuals of earlier steps):
 ///
-///     r^(beta) = eps^(beta) - A^(beta) eps^c - sum_{alpha nonlinear} P^(beta alpha) mu^(alpha) = 0,
+///     r^(beta) = eps^(beta) - A^(beta) eps^c - sum_{alpha nonlinear} P^(beta alpha) mu^(alpha) =
+///     0,
 ///
 /// with one unknown eps^(beta) (6) per *nonlinear* partition beta. A
 /// partition with a linear law has sigma = L0 eps, so mu = 0 exactly: it
@@ -107,8 +108,8 @@ struct ReducedOrderOptions {
 
 /// What one step of the reduced-order law computes besides the stress.
 struct ReducedOrderStepInfo {
-  int iterations = 0;   ///< Newton iterations taken (0: the first guess held)
-  double residual = 0;  ///< final max |r| (strain)
+  int iterations = 0;  ///< Newton iterations taken (0: the first guess held)
+  double residual = 0; ///< final max |r| (strain)
   /// d(d mu)/d(d eps^c) of the nonlinear partitions, stacked in the order of
   /// ReducedOrderLaw::nonlinearPartitions() (6m x 6, engineering strain)
   Eigen::MatrixXd dmu_deps;
@@ -181,9 +182,9 @@ private:
   std::vector<int> offset_;             ///< per partition: start of its state block
   std::vector<int> trial_offset_;       ///< per nonlinear partition: its law state in a Trial
   int state_size_ = 0, trial_state_size_ = 0;
-  Matrix6 C_linear_;                    ///< sum over linear e of c_e L_e A^(e)
-  std::vector<Matrix6> B_;              ///< per nonlinear a: sum over linear e of c_e L_e P^(e a)
-  Eigen::MatrixXd R_nl_, Q_nl_;         ///< R, Q restricted to the nonlinear partitions
+  Matrix6 C_linear_;            ///< sum over linear e of c_e L_e A^(e)
+  std::vector<Matrix6> B_;      ///< per nonlinear a: sum over linear e of c_e L_e P^(e a)
+  Eigen::MatrixXd R_nl_, Q_nl_; ///< R, Q restricted to the nonlinear partitions
 };
 
 } // namespace lamina::materials

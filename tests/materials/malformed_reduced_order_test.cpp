@@ -29,7 +29,9 @@ bool has(const std::string& text, const std::string& part) {
 
 class MalformedReducedOrder : public ::testing::Test {
 protected:
-  void SetUp() override { test::addReducedOrderEntry(lib_, "polyurea-cell", test::polyureaLaminate()); }
+  void SetUp() override {
+    test::addReducedOrderEntry(lib_, "polyurea-cell", test::polyureaLaminate());
+  }
   test::RunResult run(const std::string& args) { return test::runMaterials(dir_, lib_, args); }
   std::filesystem::path sideFile() const {
     const mat::Library lib(lib_);
@@ -107,7 +109,8 @@ TEST_F(MalformedReducedOrder, ReducedOrderIsNotALawWithKeys) {
   test::writeFile(catalog, "[cell]\ndescription = \"x\"\nsource = \"y\"\ndensity = 1000.0\n"
                            "law = \"reduced-order\"\n");
   std::string e = errorOf([&] { mat::Catalog{catalog}; });
-  EXPECT_TRUE(has(e, catalog.string()) && has(e, "cell.law") && has(e, "homogenize --reduced-order"))
+  EXPECT_TRUE(has(e, catalog.string()) && has(e, "cell.law") &&
+              has(e, "homogenize --reduced-order"))
       << e;
   // a cell file's phase (read by micro::readPhase through readLawSpec)
   const toml::table doc = core::parseTomlString(
@@ -134,9 +137,9 @@ TEST_F(MalformedReducedOrder, NewtonThatDoesNotConvergeNamesEntryStepAndResidual
 
 TEST_F(MalformedReducedOrder, ReducedOrderOptionsOnAnotherLawAreRefused) {
   const auto d = dir_.path() / "d.csv";
-  for (const std::string& opt : {"--nonlinear-dispersion '" + d.string() + "'",
-                                std::string("--newton-iterations 5"),
-                                std::string("--newton-tolerance 1e-8")}) {
+  for (const std::string& opt :
+       {"--nonlinear-dispersion '" + d.string() + "'", std::string("--newton-iterations 5"),
+        std::string("--newton-tolerance 1e-8")}) {
     const auto r = run("drive polyurea-gvbo --path shear --rate 1 --to 0.1 --out '" +
                        out_.string() + "' " + opt);
     EXPECT_EQ(r.status, 1) << opt;

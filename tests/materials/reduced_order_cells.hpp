@@ -100,8 +100,7 @@ inline materials::ReducedOrderModel laminateCell(const std::vector<materials::La
 /// The chapter's two-domain laminate: GVBO soft 0.81, elastic hard 0.19,
 /// one partition per layer.
 inline materials::ReducedOrderModel polyureaLaminate(bool synthetic_micro_inertia = false) {
-  return laminateCell({softGvbo(), hardElastic()}, {0, 1}, {0.81, 0.19},
-                      synthetic_micro_inertia);
+  return laminateCell({softGvbo(), hardElastic()}, {0, 1}, {0.81, 0.19}, synthetic_micro_inertia);
 }
 
 /// Drives @p law from its initial state along eps = E i / @p steps (i = 1..steps,
@@ -138,10 +137,9 @@ inline materials::Material reducedOrderEntry(const std::string& name,
 /// in a side file written by writeReducedOrderArrays.
 inline void addReducedOrderEntry(const std::filesystem::path& library, const std::string& name,
                                  const materials::ReducedOrderModel& model) {
-  materials::Library(library).add(reducedOrderEntry(name, model), false,
-                                  [&model](const std::filesystem::path& h5) {
-                                    materials::writeReducedOrderArrays(h5, model);
-                                  });
+  materials::Library(library).add(
+      reducedOrderEntry(name, model), false,
+      [&model](const std::filesystem::path& h5) { materials::writeReducedOrderArrays(h5, model); });
 }
 
 } // namespace lamina::test

@@ -58,7 +58,8 @@ TEST_F(ReducedOrderProgram, DriveGivesTheStressOfTheLawBuiltDirectly) {
     ASSERT_EQ(rows.size(), expect.size());
     for (std::size_t i = 0; i < rows.size(); ++i)
       for (int k = 0; k < 6; ++k)
-        EXPECT_EQ(rows[i][static_cast<std::size_t>(7 + k)], expect[i].sigma[k]) << kin << " row " << i;
+        EXPECT_EQ(rows[i][static_cast<std::size_t>(7 + k)], expect[i].sigma[k])
+            << kin << " row " << i;
   }
 }
 

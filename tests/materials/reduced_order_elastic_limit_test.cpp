@@ -23,8 +23,8 @@ using mat::Vector6;
 Matrix6 averagedStiffness(const mat::ReducedOrderModel& m) {
   Matrix6 C = Matrix6::Zero();
   for (std::size_t a = 0; a < m.fraction.size(); ++a)
-    C += m.fraction[a] *
-         m.phases[static_cast<std::size_t>(m.partition_phase[a])].law.C.matrix() * m.A[a];
+    C += m.fraction[a] * m.phases[static_cast<std::size_t>(m.partition_phase[a])].law.C.matrix() *
+         m.A[a];
   return C;
 }
 
@@ -40,10 +40,10 @@ mat::LawSpec anisotropic(const Matrix6& C) {
 // 6x6 products and sums of numbers of one sign scale).
 TEST(ReducedOrderElasticLimit, AllLinearPartitionsGiveSumCLA) {
   std::mt19937_64 rng(3);
-  const mat::ReducedOrderModel m = test::laminateCell(
-      {anisotropic(test::randomSpd(rng)), anisotropic(test::randomSpd(rng)),
-       anisotropic(test::randomSpd(rng))},
-      {0, 1, 2}, {0.5, 0.3, 0.2}, true);
+  const mat::ReducedOrderModel m =
+      test::laminateCell({anisotropic(test::randomSpd(rng)), anisotropic(test::randomSpd(rng)),
+                          anisotropic(test::randomSpd(rng))},
+                         {0, 1, 2}, {0.5, 0.3, 0.2}, true);
   const mat::ReducedOrderLaw law("elastic-cell", m);
   EXPECT_TRUE(law.isLinear());
   EXPECT_EQ(law.stateSize(), 0);

@@ -135,8 +135,8 @@ TEST(ReducedOrderLaminate, MatchesTheLaminateAlongEveryPathAtTwoRates) {
   for (double tolerance : {mat::ReducedOrderOptions{}.tolerance, 1e-14}) {
     const mat::ReducedOrderLaw law("polyurea-laminate", model, {tolerance, 25});
     double worst = 0;
-    for (mat::DrivePath path : {mat::DrivePath::UniaxialStrain, mat::DrivePath::Shear,
-                                mat::DrivePath::Confined})
+    for (mat::DrivePath path :
+         {mat::DrivePath::UniaxialStrain, mat::DrivePath::Shear, mat::DrivePath::Confined})
       for (double rate : {1e-2, 1e3}) {
         mat::DriveOptions o;
         o.path = path;

@@ -61,9 +61,8 @@ TEST(ReducedOrderLibrary, AddRecordsTheChecksumOfEverySideFile) {
   h.kind = "homogenized";
   h.C = mat::Stiffness::isotropic(1e9, 0.3);
   h.density = 1000;
-  mat::Library(lib).add(h, false, [](const std::filesystem::path& p) {
-    test::writeFile(p, "any bytes");
-  });
+  mat::Library(lib).add(h, false,
+                        [](const std::filesystem::path& p) { test::writeFile(p, "any bytes"); });
   const mat::Library reread(lib);
   for (const std::string name : {"cell", "homogenized"}) {
     const mat::Material& m = reread.get(name);

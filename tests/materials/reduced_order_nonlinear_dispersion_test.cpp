@@ -60,8 +60,8 @@ TEST(ReducedOrderNonlinearDispersion, IsEq40WithTheEigenstrainSensitivities) {
   Vector6 sigma;
   Vector6 de;
   de << 0.002, -0.001, 0.0005, 0.003, -0.002, 0.001;
-  const mat::PointStep step{eps, eps + de, 1 + eps.head<3>().sum(),
-                            1 + (eps + de).head<3>().sum(), 1e-2};
+  const mat::PointStep step{eps, eps + de, 1 + eps.head<3>().sum(), 1 + (eps + de).head<3>().sum(),
+                            1e-2};
   std::vector<double> out(state.size());
   mat::ReducedOrderStepInfo info;
   law.updateWithInfo(step, state.data(), out.data(), sigma, nullptr, &info);

@@ -103,9 +103,9 @@ TEST(ReducedOrderState, StateMayAliasThePreviousState) {
 
 // The stored partition strains average to the coarse strain (sum c A = I and
 // sum c P = 0 hold for any cell) up to the Newton residual, at most the
-// tolerance times the Newton's scale (strains and eigenstrains); the stored partition stresses (GVBO: its
-// state; elastic: L eps) average to the returned stress to round-off (1e-12
-// relative: both are the same sums of the accepted partition strains).
+// tolerance times the Newton's scale (strains and eigenstrains); the stored partition stresses
+// (GVBO: its state; elastic: L eps) average to the returned stress to round-off (1e-12 relative:
+// both are the same sums of the accepted partition strains).
 TEST(ReducedOrderState, PartitionStrainsAndStressesAverageToTheCoarseOnes) {
   const mat::ReducedOrderModel m = cell(2);
   const mat::ReducedOrderLaw law("cell", m);
@@ -126,8 +126,9 @@ TEST(ReducedOrderState, PartitionStrainsAndStressesAverageToTheCoarseOnes) {
     const double* block = state.data() + law.stateOffset(a);
     const Vector6 ea = Eigen::Map<const Vector6>(block);
     const mat::LawSpec& spec = m.phases[static_cast<std::size_t>(m.partition_phase[ua])].law;
-    const Vector6 sa = spec.gvbo ? Vector6(Eigen::Map<const Vector6>(block + 6 + mat::GvboState::kSigma))
-                                 : Vector6(spec.C.matrix() * ea);
+    const Vector6 sa = spec.gvbo
+                           ? Vector6(Eigen::Map<const Vector6>(block + 6 + mat::GvboState::kSigma))
+                           : Vector6(spec.C.matrix() * ea);
     eps_avg += m.fraction[ua] * ea;
     sig_avg += m.fraction[ua] * sa;
     const Vector6 mu = ea - spec.C.matrix().inverse() * sa;
