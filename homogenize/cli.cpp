@@ -176,6 +176,8 @@ struct CliNames {
   CLI::Option* seed = nullptr; ///< --partition-seed
 };
 
+void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names);
+
 /// Declares every option of the program on @p app, into @p cli and @p names.
 void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_option("cell", cli.cell_path, "cell file (TOML)")->required();
@@ -239,7 +241,12 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
          "--tangent-increment", cli.tangent.increment,
          "strain increment a tangent is for, in (0, 1]: dt = increment / rate (default 1e-3)")
       ->check(CLI::PositiveNumber);
-  // reduced-order cell (docs/homogenize.md, "Reduced-order cells")
+  addReducedOrderOptions(app, cli, names);
+}
+
+/// Declares the options of a reduced-order cell (docs/homogenize.md,
+/// "Reduced-order cells") on @p app.
+void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_flag("--reduced-order", cli.reduced_order,
                "add the cell's reduced-order model (influence functions of its partitions) as "
                "one library entry NAME");

@@ -131,15 +131,25 @@ DispersionAccumulator::DispersionAccumulator(const Grid& grid,
     s_hat_[i] = {w[2 * i], w[2 * i + 1]};
 }
 
-void DispersionAccumulator::addLoadCase(int k, const double* u) {
-  LAMINA_CHECK(k >= 0 && k < 6, "load case ", k, " is not in 0..5");
+std::vector<std::complex<double>> DispersionAccumulator::spectrum(const double* u) const {
   const std::size_t Nc = grid_.complexSize();
-  const double NN = static_cast<double>(grid_.size()) * static_cast<double>(grid_.size());
   const Distribution serial = Distribution::serial(grid_);
   VectorFft fft(grid_, serial, 0, false, Precision::Double);
   fft.forward(u);
   const double* w = fft.spectrum<double>();
   const std::size_t chunk = fft.chunkSize(); // complex entries between components
+  std::vector<Complex> out(3 * Nc);
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t i = 0; i < Nc; ++i)
+      out[c * Nc + i] = Complex(w[2 * (c * chunk + i)], w[2 * (c * chunk + i) + 1]);
+  return out;
+}
+
+void DispersionAccumulator::addLoadCase(int k, const double* u) {
+  LAMINA_CHECK(k >= 0 && k < 6, "load case ", k, " is not in 0..5");
+  const std::size_t Nc = grid_.complexSize();
+  const double NN = static_cast<double>(grid_.size()) * static_cast<double>(grid_.size());
+  const std::vector<Complex> H = spectrum(u);
   const std::size_t kk = static_cast<std::size_t>(k);
   std::vector<Complex>& h = h_hat_[kk];
   h.assign(3 * Nc, Complex(0, 0));
@@ -164,8 +174,7 @@ void DispersionAccumulator::addLoadCase(int k, const double* u) {
     const Complex to_h = Complex(0, -1) * m.shift; // 1 / (i e^{i theta})
     for (int c = 0; c < 3; ++c) {
       const std::size_t at = static_cast<std::size_t>(c) * Nc + m.index;
-      const std::size_t in = 2 * (static_cast<std::size_t>(c) * chunk + m.index);
-      const Complex Hc(w[in], w[in + 1]);
+      const Complex Hc = H[at];
       acc[2] += m.weight * m.mass * std::norm(Hc);
       h[at] = Hc + to_h * s * v[c];
     }
@@ -204,21 +213,15 @@ InfluenceAverages DispersionAccumulator::addInfluence(const double* S) {
     LAMINA_CHECK(have_[k], "influence function before load case ", k + 1, " was added");
   const std::size_t Nc = grid_.complexSize();
   const double NN = static_cast<double>(grid_.size()) * static_cast<double>(grid_.size());
-  const Distribution serial = Distribution::serial(grid_);
-  VectorFft fft(grid_, serial, 0, false, Precision::Double);
-  fft.forward(S);
-  const double* w = fft.spectrum<double>();
-  const std::size_t chunk = fft.chunkSize(); // complex entries between components
-  std::vector<Complex> s(3 * Nc, Complex(0, 0));
+  std::vector<Complex> s = spectrum(S);
   const std::size_t before = s_hat_of_.size();
   const double zero2 = zeroOfQ(grid_);
   // accumulators: 6 with h, then one per earlier function, then itself
   const auto sums = sumOverModes(grid_, 6 + before + 1, [&](const Mode& m, double* acc) {
-    if (m.q.squaredNorm() <= zero2)
-      return; // mean and hourglass modes: dropped, as h's
-    for (std::size_t c = 0; c < 3; ++c) {
-      const std::size_t in = 2 * (c * chunk + m.index);
-      s[c * Nc + m.index] = Complex(w[in], w[in + 1]);
+    if (m.q.squaredNorm() <= zero2) { // mean and hourglass modes: dropped, as h's
+      for (std::size_t c = 0; c < 3; ++c)
+        s[c * Nc + m.index] = Complex(0, 0);
+      return;
     }
     const double f = m.weight * m.mass;
     auto dot = [&](const std::vector<Complex>& g) {

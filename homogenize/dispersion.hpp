@@ -100,6 +100,8 @@ public:
 
 private:
   using Complex = std::complex<double>;
+  /// the r2c spectrum of a nodal field (3 x N) as 3 x complexSize complex values
+  std::vector<Complex> spectrum(const double* u) const;
   Grid grid_;
   double rho_bar_ = 0;
   std::vector<Complex> s_hat_;                // FFT of Delta rho / rho_bar
