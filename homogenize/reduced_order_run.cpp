@@ -96,6 +96,7 @@ materials::Material makeReducedOrderEntry(const std::string& name, const micro::
   p.insert("solves", result.cost.solves);
   p.insert("iterations", static_cast<std::int64_t>(result.cost.iterations));
   p.insert("residual", result.cost.max_residual);
+  p.insert("asymmetry_before_symmetrizing", result.linear.asymmetry);
   p.insert("reference_lambda0", result.linear.lambda0);
   p.insert("reference_mu0", result.linear.mu0);
   p.insert("wall_s", result.cost.wall_s);
