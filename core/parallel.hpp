@@ -16,6 +16,9 @@
 /// Put it only on leaf functions without OpenMP pragmas (GCC outlines the
 /// body of a parallel region before cloning, so the clones would not reach
 /// it). Other compilers and targets get the plain function.
+///
+/// ThreadsScope: a solver that picks its own team size sets it for its
+/// lifetime and gives the caller's back afterwards.
 
 #include <omp.h>
 
@@ -84,6 +87,20 @@ private:
   }
   std::exception_ptr first_;
   std::atomic<bool> failed_{false};
+};
+
+/// Sets the OpenMP team size (omp_set_num_threads) for the lifetime of the
+/// object and restores the previous one when it ends.
+class ThreadsScope {
+public:
+  /// @param threads the team size of the parallel regions in this scope (>= 1)
+  explicit ThreadsScope(int threads) { omp_set_num_threads(threads); }
+  ~ThreadsScope() { omp_set_num_threads(saved_); }
+  ThreadsScope(const ThreadsScope&) = delete;
+  ThreadsScope& operator=(const ThreadsScope&) = delete;
+
+private:
+  int saved_ = omp_get_max_threads();
 };
 
 } // namespace lamina::core

@@ -50,6 +50,13 @@ double availableMemoryBytes() {
   return std::isfinite(avail) ? std::max(avail, 0.0) : 0.0;
 }
 
+double peakResidentBytes() {
+  rusage usage{};
+  if (::getrusage(RUSAGE_SELF, &usage) != 0)
+    return 0;
+  return static_cast<double>(usage.ru_maxrss) * 1024.0; // Linux: KiB
+}
+
 int hardwareThreads() {
   cpu_set_t set;
   CPU_ZERO(&set);

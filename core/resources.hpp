@@ -16,6 +16,10 @@ namespace lamina::core {
 /// are set; 0 when nothing is known (then no estimate is refused).
 double availableMemoryBytes();
 
+/// @return the largest resident set this process has had so far, in bytes
+/// (getrusage's ru_maxrss); 0 when the system does not tell
+double peakResidentBytes();
+
 /// @return the hardware threads this process may run on (its CPU affinity
 /// mask; at least 1)
 int hardwareThreads();

@@ -3,6 +3,8 @@
 /// [--threads N] [--tol T] [--resolution N]`: effective C and density of a
 /// unit cell into the materials library. With `--path P --rate R --to S`:
 /// the nonlinear cell under that strain-rate history (nonlinear_run.hpp).
+/// With `--reduced-order [--partitions K] [--partition-seed S]`: the cell's
+/// reduced-order model as one library entry (reduced_order_run.hpp).
 /// Under `mpirun -np N` the linear homogenization runs over N ranks (rank 0
 /// builds the cell, scatters it, prints and writes the library).
 
@@ -16,6 +18,7 @@
 #include "homogenize/homogenizer.hpp"
 #include "homogenize/library_entry.hpp"
 #include "homogenize/nonlinear_run.hpp"
+#include "homogenize/reduced_order_run.hpp"
 #include "materials/catalog.hpp"
 #include "materials/library.hpp"
 #include "materials/point_driver.hpp"
@@ -145,6 +148,9 @@ struct Cli {
   lamina::homogenize::PathSpec path;
   lamina::homogenize::TangentSpec tangent;
   std::vector<int> field_steps;
+  bool reduced_order = false;      ///< --reduced-order: a reduced-order cell entry
+  int partitions = 0;              ///< --partitions K per phase (0: not given, one per phase)
+  std::int64_t partition_seed = static_cast<std::int64_t>(lamina::homogenize::kDefaultPartitionSeed);
 
   /// @return true for a nonlinear run (a strain path or rate-dependent tangents)
   bool nonlinear() const { return path_given || !tangent.rates.empty(); }
@@ -166,7 +172,11 @@ struct CliNames {
   std::string plan = "auto", estimate = "energy", precision = "auto", path;
   CLI::Option* rate = nullptr; ///< --rate, to tell whether it was given
   CLI::Option* to = nullptr;   ///< --to, likewise
+  CLI::Option* tol = nullptr;  ///< --tol (the reduced-order default is tighter)
+  CLI::Option* seed = nullptr; ///< --partition-seed
 };
+
+void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names);
 
 /// Declares every option of the program on @p app, into @p cli and @p names.
 void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
@@ -178,7 +188,10 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_flag("--json", cli.json, "print a JSON summary on stdout (one object per entry)");
   app.add_option("--threads", cli.threads, "OpenMP and FFTW threads")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--tol", cli.tol, "relative residual per load case")->check(CLI::PositiveNumber);
+  names.tol = app.add_option("--tol", cli.tol,
+                             "relative residual per load case (default 1e-5; with "
+                             "--reduced-order 1e-8)")
+                  ->check(CLI::PositiveNumber);
   app.add_option("--resolution", cli.resolution, "override the resolution: N^3 voxels")
       ->check(CLI::Range(2, 4096));
   app.add_option("--catalog", cli.catalog, "catalog file (default: $LAMINA_CATALOG or built-in)");
@@ -228,6 +241,23 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
          "--tangent-increment", cli.tangent.increment,
          "strain increment a tangent is for, in (0, 1]: dt = increment / rate (default 1e-3)")
       ->check(CLI::PositiveNumber);
+  addReducedOrderOptions(app, cli, names);
+}
+
+/// Declares the options of a reduced-order cell (docs/homogenize.md,
+/// "Reduced-order cells") on @p app.
+void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names) {
+  app.add_flag("--reduced-order", cli.reduced_order,
+               "add the cell's reduced-order model (influence functions of its partitions) as "
+               "one library entry NAME");
+  app.add_option("--partitions", cli.partitions,
+                 "reduced-order: K partitions per phase by k-means of the voxels' strain "
+                 "concentration tensors (default: one partition per phase)")
+      ->check(CLI::Range(1, 1 << 20));
+  names.seed = app.add_option("--partition-seed", cli.partition_seed,
+                              "reduced-order: seed of the k-means++ seeding (default " +
+                                  std::to_string(lamina::homogenize::kDefaultPartitionSeed) + ")")
+                   ->check(CLI::NonNegativeNumber);
 }
 
 /// Turns the checked strings of @p names into the enums of @p cli.
@@ -263,6 +293,64 @@ void checkPathOptions(const Cli& cli, const CliNames& names) {
                                         : ": only with --path (a strain path run)"),
         CLI::ExitCodes::ValidationError);
   }
+}
+
+/// The rules of --reduced-order: one mode at a time (not with a strain path
+/// or tangent entries), --partitions and --partition-seed only with it (the
+/// seed only with --partitions). Throws a CLI error (exit 2) naming the options.
+void checkReducedOrderOptions(const Cli& cli, const CliNames& names) {
+  if (cli.reduced_order && (cli.path_given || !cli.tangent.rates.empty()))
+    throw CLI::ValidationError(std::string("--reduced-order and ") +
+                                   (cli.path_given ? "--path" : "--tangent-rates") +
+                                   ": a reduced-order cell entry is a mode of its own (run "
+                                   "them as two commands)",
+                               CLI::ExitCodes::ValidationError);
+  if (!cli.reduced_order && (cli.partitions > 0 || names.seed->count() > 0))
+    throw CLI::ValidationError(std::string(cli.partitions > 0 ? "--partitions" : "--partition-seed") +
+                                   ": only with --reduced-order",
+                               CLI::ExitCodes::ValidationError);
+  if (names.seed->count() > 0 && cli.partitions == 0)
+    throw CLI::ValidationError("--partition-seed: seeds the k-means of --partitions K (without "
+                               "it every phase is one partition)",
+                               CLI::ExitCodes::ValidationError);
+}
+
+/// The build options of --reduced-order.
+lamina::homogenize::ReducedOrderOptions reducedOrderOptions(const Cli& cli,
+                                                            const CliNames& names) {
+  lamina::homogenize::ReducedOrderOptions opt;
+  if (names.tol->count() > 0)
+    opt.tol = cli.tol;
+  opt.threads = cli.threads;
+  opt.measure = measureFlag(cli.plan);
+  opt.quiet = cli.quiet || cli.json;
+  if (cli.partitions > 0) {
+    opt.partitions.method = lamina::homogenize::PartitionMethod::KMeans;
+    opt.partitions.per_phase = cli.partitions;
+    opt.partitions.seed = static_cast<std::uint64_t>(cli.partition_seed);
+  }
+  return opt;
+}
+
+/// Checks --reduced-order against @p spec and the library before the cell
+/// is built: a name that is free, a serial run, the memory of the build.
+void checkReducedOrder(const Cli& cli, const lamina::micro::CellSpec& spec,
+                       const std::array<int, 3>& n, const lamina::homogenize::MpiSession& mpi) {
+  using namespace lamina;
+  if (cli.name.empty())
+    throw Error("--reduced-order needs --name NAME", {"", 0, "--name"});
+  LAMINA_CHECK(mpi.ranks() == 1, "reduced-order builds are serial (no mpirun)");
+  const materials::Library lib(materials::Library::resolvePath(cli.library));
+  lib.checkNewNames({cli.name}, cli.overwrite, "--name");
+  const std::size_t voxels = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *
+                             static_cast<std::size_t>(n[2]);
+  const int partitions = std::max(1, cli.partitions) * static_cast<int>(spec.phases.size());
+  core::requireMemory(
+      homogenize::ReducedOrderBuilder::memoryBytes(voxels, partitions, spec.physical_size),
+      "a reduced-order build of " + std::to_string(voxels) + " voxels into up to " +
+          std::to_string(partitions) + " partitions",
+      {cli.cell_path, 0, cli.resolution > 0 ? "--resolution" : "cell.resolution"},
+      "use fewer voxels (--resolution) or fewer partitions (--partitions)");
 }
 
 /// Checks the nonlinear arguments against @p spec before the cell is built:
@@ -401,6 +489,21 @@ void runNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec,
       });
 }
 
+/// The reduced-order cell into the library (serial), with its summary.
+void runReducedOrder(const Cli& cli, const CliNames& names, const lamina::micro::CellSpec& spec,
+                     const lamina::micro::UnitCell& cell) {
+  using namespace lamina;
+  materials::Library lib(materials::Library::resolvePath(cli.library));
+  const homogenize::ReducedOrderResult r = homogenize::addReducedOrderEntry(
+      spec, cell, cli.name, reducedOrderOptions(cli, names), lib, cli.overwrite);
+  if (cli.json) {
+    std::cout << homogenize::reducedOrderJson(cli.name, r).dump() << std::endl;
+    return;
+  }
+  std::printf("%s", homogenize::reducedOrderSummary(cli.name, r).c_str());
+  std::printf("added '%s' to %s\n", cli.name.c_str(), lib.path().string().c_str());
+}
+
 /// The linear homogenization into the library (distributed under mpirun).
 void runLinear(const Cli& cli, const lamina::micro::CellSpec& spec,
                const lamina::micro::UnitCell& cell, const lamina::homogenize::MpiSession& mpi) {
@@ -430,7 +533,7 @@ void runLinear(const Cli& cli, const lamina::micro::CellSpec& spec,
 }
 
 /// The method: check the options, read the cell, size it, build it, run.
-void run(Cli& cli, lamina::homogenize::MpiSession& mpi) {
+void run(Cli& cli, const CliNames& names, lamina::homogenize::MpiSession& mpi) {
   using namespace lamina;
   if (!cli.name.empty()) // a nonlinear run without a library entry has none
     core::checkName(cli.name, "entry name", {"", 0, "--name"});
@@ -441,9 +544,14 @@ void run(Cli& cli, lamina::homogenize::MpiSession& mpi) {
     n = {cli.resolution, cli.resolution, cli.resolution};
   if (cli.nonlinear())
     checkNonlinear(cli, spec);
-  checkMemory(cli, spec, n, mpi);
+  if (cli.reduced_order)
+    checkReducedOrder(cli, spec, n, mpi);
+  else
+    checkMemory(cli, spec, n, mpi);
   const micro::UnitCell cell = buildCell(spec, n, mpi);
-  if (cli.nonlinear())
+  if (cli.reduced_order)
+    runReducedOrder(cli, names, spec, cell);
+  else if (cli.nonlinear())
     runNonlinear(cli, spec, cell, mpi);
   else
     runLinear(cli, spec, cell, mpi);
@@ -462,6 +570,7 @@ int runProgram(int argc, char** argv, MpiSession& mpi, UnexpectedErrors unexpect
   try {
     app.parse(argc, argv);
     parseChoices(names, cli);
+    checkReducedOrderOptions(cli, names); // first: a mode of its own
     checkPathOptions(cli, names);
   } catch (const CLI::ParseError& e) {
     // every rank parses the same arguments: one prints
@@ -470,7 +579,7 @@ int runProgram(int argc, char** argv, MpiSession& mpi, UnexpectedErrors unexpect
     return app.exit(e) == 0 ? 0 : lamina::kExitUsage;
   }
   try {
-    run(cli, mpi);
+    run(cli, names, mpi);
   } catch (const lamina::DivergenceError& e) {
     std::fprintf(stderr, "homogenize: %s\n", e.what());
     return mpi.abort(lamina::kExitDivergence);

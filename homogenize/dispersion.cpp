@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 
+#include <omp.h>
+
 #include <cmath>
 #include <complex>
 #include <cstring>
@@ -36,11 +38,12 @@ struct Mode {
 };
 
 /// Calls f(Mode, acc) for every mode of @p grid on the OpenMP threads, each
-/// with its own K accumulators acc[0..K-1]; returns their sums. The factors
-/// of each axis (sin and cos of xi/2, e^{-i xi/2}, (2 + cos xi)/3) are
-/// tabulated once: a mode costs products, no trigonometry.
-template <int K, class F>
-std::array<double, K> sumOverModes(const Grid& grid, F&& f) {
+/// with its own @p count accumulators acc[0..count-1]; returns their sums
+/// (the threads' partial sums added in thread order). The factors of each
+/// axis (sin and cos of xi/2, e^{-i xi/2}, (2 + cos xi)/3) are tabulated
+/// once: a mode costs products, no trigonometry.
+template <class F>
+std::vector<double> sumOverModes(const Grid& grid, std::size_t count, F&& f) {
   const int n[3] = {grid.n[0], grid.n[1], grid.n[2]};
   const int m2 = n[2] / 2 + 1;
   std::vector<double> sn[3], cs[3], mass[3];
@@ -55,10 +58,12 @@ std::array<double, K> sumOverModes(const Grid& grid, F&& f) {
       shift[d].push_back(std::polar(1.0, -xi / 2));
     }
   }
-  std::array<double, K> total{};
+  // per-thread accumulators, allocated before the region (nothing in it throws)
+  std::vector<std::vector<double>> acc_of(static_cast<std::size_t>(omp_get_max_threads()),
+                                          std::vector<double>(count, 0.0));
 #pragma omp parallel
   {
-    double acc[K] = {};
+    double* acc = acc_of[static_cast<std::size_t>(omp_get_thread_num())].data();
 #pragma omp for schedule(static)
     for (int i = 0; i < n[0]; ++i)
       for (int j = 0; j < n[1]; ++j)
@@ -75,10 +80,11 @@ std::array<double, K> sumOverModes(const Grid& grid, F&& f) {
           m.weight = (k == 0 || 2 * k == n[2]) ? 1.0 : 2.0;
           f(m, acc);
         }
-#pragma omp critical(lamina_dispersion_modes)
-    for (int a = 0; a < K; ++a)
-      total[static_cast<std::size_t>(a)] += acc[a];
   }
+  std::vector<double> total(count, 0.0);
+  for (const auto& acc : acc_of)
+    for (std::size_t a = 0; a < count; ++a)
+      total[a] += acc[a];
   return total;
 }
 
@@ -125,22 +131,32 @@ DispersionAccumulator::DispersionAccumulator(const Grid& grid,
     s_hat_[i] = {w[2 * i], w[2 * i + 1]};
 }
 
-void DispersionAccumulator::addLoadCase(int k, const double* u) {
-  LAMINA_CHECK(k >= 0 && k < 6, "load case ", k, " is not in 0..5");
+std::vector<std::complex<double>> DispersionAccumulator::spectrum(const double* u) const {
   const std::size_t Nc = grid_.complexSize();
-  const double NN = static_cast<double>(grid_.size()) * static_cast<double>(grid_.size());
   const Distribution serial = Distribution::serial(grid_);
   VectorFft fft(grid_, serial, 0, false, Precision::Double);
   fft.forward(u);
   const double* w = fft.spectrum<double>();
   const std::size_t chunk = fft.chunkSize(); // complex entries between components
+  std::vector<Complex> out(3 * Nc);
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t i = 0; i < Nc; ++i)
+      out[c * Nc + i] = Complex(w[2 * (c * chunk + i)], w[2 * (c * chunk + i) + 1]);
+  return out;
+}
+
+void DispersionAccumulator::addLoadCase(int k, const double* u) {
+  LAMINA_CHECK(k >= 0 && k < 6, "load case ", k, " is not in 0..5");
+  const std::size_t Nc = grid_.complexSize();
+  const double NN = static_cast<double>(grid_.size()) * static_cast<double>(grid_.size());
+  const std::vector<Complex> H = spectrum(u);
   const std::size_t kk = static_cast<std::size_t>(k);
   std::vector<Complex>& h = h_hat_[kk];
   h.assign(3 * Nc, Complex(0, 0));
   const Eigen::Matrix3d T = unitStrain(k);
   const double zero2 = zeroOfQ(grid_);
   // sums: |e|^2, |residual|^2, |H|^2 (mass-weighted)
-  const auto sums = sumOverModes<3>(grid_, [&](const Mode& m, double* acc) {
+  const auto sums = sumOverModes(grid_, 3, [&](const Mode& m, double* acc) {
     const Complex s = s_hat_[m.index];
     const double qq = m.q.squaredNorm();
     // e_hat = s T; |e_hat|^2 (Frobenius) per mode
@@ -158,8 +174,7 @@ void DispersionAccumulator::addLoadCase(int k, const double* u) {
     const Complex to_h = Complex(0, -1) * m.shift; // 1 / (i e^{i theta})
     for (int c = 0; c < 3; ++c) {
       const std::size_t at = static_cast<std::size_t>(c) * Nc + m.index;
-      const std::size_t in = 2 * (static_cast<std::size_t>(c) * chunk + m.index);
-      const Complex Hc(w[in], w[in + 1]);
+      const Complex Hc = H[at];
       acc[2] += m.weight * m.mass * std::norm(Hc);
       h[at] = Hc + to_h * s * v[c];
     }
@@ -171,7 +186,7 @@ void DispersionAccumulator::addLoadCase(int k, const double* u) {
   const std::vector<Complex>* g[6] = {};
   for (std::size_t J = 0; J < 6; ++J)
     g[J] = have_[J] ? &h_hat_[J] : nullptr;
-  const auto pair = sumOverModes<6>(grid_, [&](const Mode& m, double* acc) {
+  const auto pair = sumOverModes(grid_, 6, [&](const Mode& m, double* acc) {
     for (std::size_t J = 0; J < 6; ++J) {
       if (!g[J])
         continue;
@@ -191,6 +206,43 @@ void DispersionAccumulator::addLoadCase(int k, const double* u) {
     out_.D(static_cast<Eigen::Index>(J), static_cast<Eigen::Index>(kk)) = D;
   }
   out_.h_rms[kk] = std::sqrt(out_.D(k, k) / rho_bar_);
+}
+
+InfluenceAverages DispersionAccumulator::addInfluence(const double* S) {
+  for (std::size_t k = 0; k < 6; ++k)
+    LAMINA_CHECK(have_[k], "influence function before load case ", k + 1, " was added");
+  const std::size_t Nc = grid_.complexSize();
+  const double NN = static_cast<double>(grid_.size()) * static_cast<double>(grid_.size());
+  std::vector<Complex> s = spectrum(S);
+  const std::size_t before = s_hat_of_.size();
+  const double zero2 = zeroOfQ(grid_);
+  // accumulators: 6 with h, then one per earlier function, then itself
+  const auto sums = sumOverModes(grid_, 6 + before + 1, [&](const Mode& m, double* acc) {
+    if (m.q.squaredNorm() <= zero2) { // mean and hourglass modes: dropped, as h's
+      for (std::size_t c = 0; c < 3; ++c)
+        s[c * Nc + m.index] = Complex(0, 0);
+      return;
+    }
+    const double f = m.weight * m.mass;
+    auto dot = [&](const std::vector<Complex>& g) {
+      double d = 0;
+      for (std::size_t c = 0; c < 3; ++c)
+        d += (g[c * Nc + m.index] * std::conj(s[c * Nc + m.index])).real();
+      return d;
+    };
+    for (std::size_t I = 0; I < 6; ++I)
+      acc[I] += f * dot(h_hat_[I]);
+    for (std::size_t b = 0; b < before; ++b)
+      acc[6 + b] += f * dot(s_hat_of_[b]);
+    acc[6 + before] += f * dot(s);
+  });
+  InfluenceAverages out;
+  for (std::size_t I = 0; I < 6; ++I)
+    out.with_h[I] = rho_bar_ * sums[I] / NN;
+  for (std::size_t b = 0; b <= before; ++b)
+    out.with_s.push_back(rho_bar_ * sums[6 + b] / NN);
+  s_hat_of_.push_back(std::move(s));
+  return out;
 }
 
 Dispersion DispersionAccumulator::result() const {

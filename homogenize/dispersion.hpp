@@ -27,8 +27,15 @@
 ///   mass symbol prod_d (2 + cos xi_d)/3 in Fourier space), so voxel-aligned
 ///   laminates come out exact.
 ///
-/// Scope: D_lin only. D_nonlin of eq. 40 involves eigenstrains (inelastic
-/// phases); lamina's cells are linear elastic, where it vanishes.
+/// - Reduced-order cells (reduced_order_builder.hpp): the matrices R and Q
+///   of eq. 40, R^(alpha beta)_IJ = rho_bar <S^(alpha)_I . S^(beta)_J> and
+///   Q^(alpha)_IJ = rho_bar <h_I . S^(alpha)_J>, with the eigenstrain
+///   influence functions S (addInfluence), the same cell average and the
+///   same convention (the modes with q = 0 dropped, so every field has zero
+///   mean and no hourglass part). The spectra of all influence functions
+///   are kept: 3 x complexSize() complex doubles each (about 3 N doubles).
+///   D_nonlin itself (eq. 40) needs the eigenstrain rates of the inelastic
+///   phases: it belongs to the reduced-order law, not to the cell.
 
 #include "homogenize/grid.hpp"
 #include "materials/stiffness.hpp"
@@ -48,7 +55,16 @@ struct Dispersion {
   std::array<double, 6> h_rms{}; ///< rms of h (m)
 };
 
-/// Collects the six load cases and forms zeta^2 D_lin.
+/// The eq. 40 averages of one eigenstrain influence function S (kg/m).
+struct InfluenceAverages {
+  std::array<double, 6> with_h{}; ///< rho_bar <h_I . S>, I = 0..5 (a column of Q)
+  /// rho_bar <S_m . S> for every influence function m added before S, in
+  /// the order added, then rho_bar <S . S> (a row of R up to its diagonal)
+  std::vector<double> with_s;
+};
+
+/// Collects the six load cases and forms zeta^2 D_lin (and, for
+/// reduced-order cells, the averages of eq. 40).
 class DispersionAccumulator {
 public:
   /// @param grid the cell grid (voxel lengths in metres for an SI result)
@@ -68,13 +84,30 @@ public:
   /// @return the mean density rho_bar (kg/m^3)
   double meanDensity() const { return rho_bar_; }
 
+  /// Takes an eigenstrain influence function @p S (3 x N, component-major,
+  /// nodal as H; metres per unit eigenstrain) once the six load cases are
+  /// in: keeps its spectrum (the modes with q = 0 set to zero, as h's) and
+  /// returns its averages with the six h and with every influence function
+  /// taken so far (itself last), in one pass over the modes. Throws
+  /// lamina::Error unless all six load cases were added.
+  InfluenceAverages addInfluence(const double* S);
+
+  /// @return the number of influence functions taken
+  std::size_t influences() const { return s_hat_of_.size(); }
+
+  /// @return the doubles kept per influence function (2 x 3 x complexSize)
+  std::size_t doublesPerInfluence() const { return 6 * grid_.complexSize(); }
+
 private:
   using Complex = std::complex<double>;
+  /// the r2c spectrum of a nodal field (3 x N) as 3 x complexSize complex values
+  std::vector<Complex> spectrum(const double* u) const;
   Grid grid_;
   double rho_bar_ = 0;
   std::vector<Complex> s_hat_;                // FFT of Delta rho / rho_bar
   std::array<std::vector<Complex>, 6> h_hat_; // FFT of h_k, 3 x complexSize each
   std::array<bool, 6> have_{};                // which cases were added
+  std::vector<std::vector<Complex>> s_hat_of_; // influence functions, 3 x complexSize each
   Dispersion out_;
 };
 

@@ -1,8 +1,10 @@
 #include "homogenize/homogenizer.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "homogenize/cell_operator.hpp"
+#include "homogenize/cg_solver.hpp"
 #include "homogenize/fft.hpp"
 #include "homogenize/green_operator.hpp"
 #include "homogenize/start_residual.hpp"
@@ -58,119 +60,13 @@ Precision autoPrecision(double tol) {
   return tol >= 1e-6 ? Precision::Single : Precision::Double;
 }
 
+int solverThreads(int requested, std::size_t voxels) {
+  return requested > 0 ? requested : voxels < 65536 ? 1 : omp_get_max_threads();
+}
+
 bool floatVectors(Precision fft, double tol) {
   return fft == Precision::Single && tol >= kFloatVectorsTol;
 }
-
-namespace {
-
-/// The pieces of one solve, set up once and reused by the six load cases.
-/// V: the type of the CG vectors and of the operator's arithmetic, float
-/// when floatVectors() (single-precision transforms and tol >=
-/// kFloatVectorsTol: the float rounding left in C is then at most of the
-/// order of what the tolerance leaves), else double. The scalars (alpha, beta) and the sums over
-/// the grid (p^T A p, r^T z, <C D p>, x^T r) stay double.
-template <class V>
-class CgSolver {
-public:
-  CgSolver(std::size_t local, const CellOperator& A, const StartResidual& b, const GreenOperator& M,
-           const Distribution& dist, double ref_scale)
-      : n_(3 * local), A_(A), b_(b), M_(M), dist_(dist), ref_(ref_scale), r_(n_), p_(n_), w_(n_) {}
-
-  /// Solves load case E; returns the average stress in @p sigma and, if @p x
-  /// is not null, the displacement (3 x local) in @p x.
-  /// The average stress is linear in the displacement, <C (E + D x)> = <C E>
-  /// + sum_k alpha_k <C D p_k>, and <C D p_k> comes out of the stress pass of
-  /// A p_k, so x is formed only when asked for.
-  LoadCaseResult solve(const std::array<double, 6>& E, double energy_E, const Options& opt,
-                       const std::function<void(int, double)>& monitor,
-                       std::array<double, 6>& sigma, V* x) {
-    V* r = r_.data();
-    V* p = p_.data();
-    V* w = w_.data();
-    const std::size_t n = n_;
-    // r = b = -D^T C E (x = 0) and sigma = <C E>: the operator's values with
-    // u = 0, formed only next to interfaces (start_residual.hpp)
-    b_.apply(E, r, sigma);
-    if (x) {
-#pragma omp parallel for schedule(static)
-      for (std::size_t i = 0; i < n; ++i)
-        x[i] = 0;
-    }
-    double rz = M_.apply(r, p); // p0 = z0 = M r0, rz = r0^T z0
-    const double scale = ref_ * energy_E;
-    LoadCaseResult res;
-    res.residual = std::sqrt(std::max(rz, 0.0) / scale);
-    const std::array<double, 6> zero{0, 0, 0, 0, 0, 0};
-    // converged when residual <= tol, i.e. r^T z <= tol^2 scale (the same
-    // test decides in step() whether the last inverse transforms are needed)
-    const double rz_stop = opt.tol * opt.tol * scale;
-    while (rz > rz_stop) {
-      if (res.iterations >= opt.max_iterations) {
-        std::ostringstream os;
-        os << "conjugate gradients did not reach tol " << opt.tol << " in " << opt.max_iterations
-           << " iterations (residual " << res.residual << ")";
-        throw Error(os.str());
-      }
-      double pw = 0;
-      std::array<double, 6> sigma_p{};
-      // w = A p; pw = p^T A p and <C D p> from the stress pass
-      A_.apply(p, zero, w, &sigma_p, &pw);
-      const double alpha = rz / pw;
-      if (!std::isfinite(alpha) || !(pw > 0))
-        throw DivergenceError("conjugate gradients broke down (p^T A p = " + std::to_string(pw) +
-                              "): NaN/Inf or an indefinite phase stiffness");
-      for (std::size_t a = 0; a < 6; ++a)
-        sigma[a] += alpha * sigma_p[a];
-      // r -= alpha w, x += alpha p, z = M r, p = z + beta p: fused passes
-      // (the last step skips the inverse transforms: z would not be used)
-      const double rz_new = M_.step(r, alpha, w, x, p, rz, rz_stop);
-      if (!std::isfinite(rz_new))
-        throw DivergenceError("residual is NaN/Inf in conjugate gradients");
-      rz = rz_new;
-      ++res.iterations;
-      res.residual = std::sqrt(std::max(rz, 0.0) / scale);
-      if (monitor)
-        monitor(res.iterations, res.residual);
-    }
-    // With x formed, one stress pass gives <C (E + D x)> directly: the sum of
-    // alpha_k <C D p_k> carries the rounding of every step's average (1e-12
-    // relative at 128^3, enough to tell thread counts or ranks apart). With
-    // single-precision transforms (tol >= 1e-6) that rounding is 5 decades
-    // below what the tolerance leaves in C: the pass is skipped.
-    if (x && res.iterations > 0 && std::is_same_v<V, double>)
-      A_.apply(x, E, static_cast<V*>(nullptr), &sigma);
-    return res;
-  }
-
-  /// dots[j] = x_j^T r (r: the last solve's final residual), j < count, summed
-  /// over ranks, in one pass over r.
-  void residualDots(const std::vector<AlignedArray<V>>& x, int count, double* dots) const {
-    const V* r = r_.data();
-    const V* xs[6] = {};
-    for (int j = 0; j < count; ++j)
-      xs[j] = x[static_cast<std::size_t>(j)].data();
-    double d[6] = {0, 0, 0, 0, 0, 0};
-#pragma omp parallel for schedule(static) reduction(+ : d[:6])
-    for (std::size_t i = 0; i < n_; ++i)
-      for (int j = 0; j < count; ++j)
-        d[j] += static_cast<double>(xs[j][i]) * static_cast<double>(r[i]);
-    for (int j = 0; j < count; ++j)
-      dots[j] = d[j];
-    dist_.sum(dots, count);
-  }
-
-private:
-  std::size_t n_;
-  const CellOperator& A_;
-  const StartResidual& b_;
-  const GreenOperator& M_;
-  const Distribution& dist_;
-  double ref_;
-  AlignedArray<V> r_, p_, w_;
-};
-
-} // namespace
 
 Homogenizer::Homogenizer(const Grid& grid, std::vector<std::int32_t> phase,
                          std::vector<materials::Stiffness> C, std::vector<double> density,
@@ -206,7 +102,7 @@ template <class V>
 void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, const GreenOperator& M,
                              const materials::Stiffness& C0, Result& res, materials::Matrix6& C,
                              materials::Matrix6& C_energy) {
-  CgSolver<V> cg(dist_.localSize(), A, b, M, dist_, static_cast<double>(res.voxels));
+  CgSolver<V> cg(dist_.localSize(), A, M, dist_, static_cast<double>(res.voxels));
   // displacements: all six for the energy estimate, one for a sink
   const bool energy_form = opt_.estimate == Estimate::Energy;
   std::vector<AlignedArray<V>> x;
@@ -232,7 +128,7 @@ void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, cons
     };
     try {
       V* xk = x.empty() ? nullptr : x[energy_form ? static_cast<std::size_t>(k) : 0].data();
-      res.cases[static_cast<std::size_t>(k)] = cg.solve(E, energy, opt_, monitor, sigma, xk);
+      res.cases[static_cast<std::size_t>(k)] = cg.solve(b, E, energy, opt_, monitor, &sigma, xk);
     } catch (const DivergenceError& e) {
       throw DivergenceError("load case " + std::to_string(k + 1) + ": " + e.message());
     } catch (const Error& e) {
@@ -267,17 +163,8 @@ void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, cons
 
 Result Homogenizer::run() {
   const auto t0 = std::chrono::steady_clock::now();
-  // Threads: as asked, or (auto) all for grids worth it. Below ~64k voxels a
-  // CG iteration is too short to amortise the fork/join of its parallel
-  // loops, and on shared cores a team can wait a scheduler slice per barrier.
-  const int threads = opt_.threads > 0       ? opt_.threads
-                      : grid_.size() < 65536 ? 1
-                                             : omp_get_max_threads();
-  struct ThreadsGuard {
-    int saved = omp_get_max_threads();
-    ~ThreadsGuard() { omp_set_num_threads(saved); }
-  } guard;
-  omp_set_num_threads(threads);
+  const int threads = solverThreads(opt_.threads, grid_.size());
+  const core::ThreadsScope scope(threads);
   Result res;
   res.voxels = grid_.size();
 

@@ -83,6 +83,12 @@ inline constexpr double kFloatVectorsTol = 1e-4;
 /// transforms in single precision (@p fft) and @p tol >= kFloatVectorsTol
 bool floatVectors(Precision fft, double tol);
 
+/// The OpenMP team of a cell solver: @p requested if positive, else (auto)
+/// one thread below 65536 voxels (a CG iteration is then too short to
+/// amortise the fork/join of its parallel loops, and on shared cores a team
+/// can wait a scheduler slice per barrier) and all of them above.
+int solverThreads(int requested, std::size_t voxels);
+
 /// Outcome of one load case.
 struct LoadCaseResult {
   int iterations = 0;  ///< CG iterations

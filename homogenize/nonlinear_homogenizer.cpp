@@ -30,15 +30,6 @@ double dot(const double* a, const double* b, std::size_t n) {
   return s;
 }
 
-/// Sets the OpenMP team size for the lifetime of the object.
-struct ThreadsScope {
-  int saved = omp_get_max_threads();
-  explicit ThreadsScope(int n) { omp_set_num_threads(n); }
-  ~ThreadsScope() { omp_set_num_threads(saved); }
-  ThreadsScope(const ThreadsScope&) = delete;
-  ThreadsScope& operator=(const ThreadsScope&) = delete;
-};
-
 } // namespace
 
 struct NonlinearHomogenizer::Impl {
@@ -66,9 +57,7 @@ struct NonlinearHomogenizer::Impl {
   Impl(const Grid& g, std::vector<std::int32_t> ph, std::vector<materials::LawPtr> l,
        NonlinearOptions o)
       : grid(g), phase(std::move(ph)), laws(std::move(l)), opt(o), N(g.size()),
-        threads(o.threads > 0 ? o.threads
-                : N < 65536   ? 1
-                              : omp_get_max_threads()),
+        threads(solverThreads(o.threads, N)),
         D(g) {
     LAMINA_CHECK(phase.size() == N, "phase map size does not match the grid");
     LAMINA_CHECK(opt.tol > 0 && opt.eta > 0 && opt.eta < 1, "tolerances must be positive");
@@ -109,7 +98,7 @@ struct NonlinearHomogenizer::Impl {
       *b = AlignedBuffer(3 * N);
       std::memset(b->data(), 0, 3 * N * sizeof(double));
     }
-    ThreadsScope scope(threads);
+    core::ThreadsScope scope(threads);
     const bool measure = opt.measure > 0 || (opt.measure < 0 && N > (1u << 18));
     dist = std::make_unique<Distribution>(Distribution::serial(grid));
     fft = std::make_unique<VectorFft>(grid, *dist, threads, measure, Precision::Double);
@@ -418,7 +407,7 @@ NonlinearHomogenizer::~NonlinearHomogenizer() = default;
 std::vector<StepResult>
 NonlinearHomogenizer::run(const MacroHistory& history,
                           const std::function<void(const StepResult&)>& report) {
-  ThreadsScope scope(impl_->threads);
+  core::ThreadsScope scope(impl_->threads);
   std::vector<StepResult> out;
   for (const MacroStep& s : history.steps) {
     StepResult r;
@@ -436,7 +425,7 @@ NonlinearHomogenizer::run(const MacroHistory& history,
 }
 
 Matrix6 NonlinearHomogenizer::effectiveTangent(double dt) {
-  ThreadsScope scope(impl_->threads);
+  core::ThreadsScope scope(impl_->threads);
   return impl_->effectiveTangent(dt);
 }
 

@@ -47,7 +47,7 @@ Phase readPhase(const core::TableReader& t, const CatalogProvider& catalog) {
     ph.C = law.C;
     ph.gvbo = law.gvbo;
   }
-  ph.model = materials::LawSpec{ph.law, ph.C, ph.gvbo}.make();
+  ph.model = ph.lawSpec().make();
   if (t.has("density") || ph.source == "inline")
     ph.density = t.getDouble("density");
   if (!(ph.density > 0) || !std::isfinite(ph.density))

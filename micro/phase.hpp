@@ -14,6 +14,7 @@
 #include "materials/catalog.hpp"
 #include "materials/gvbo.hpp"
 #include "materials/law.hpp"
+#include "materials/law_spec.hpp"
 #include "materials/stiffness.hpp"
 
 #include <cstdint>
@@ -46,6 +47,9 @@ struct Phase {
   /// gvbo phase: isotropic from gvboModuli(J) (eqs. 13-16 of the chapter);
   /// for other laws @p J is ignored and C is returned.
   materials::Stiffness stiffnessAt(double J) const;
+  /// @return the law as its file gave it (kind, C, GVBO parameters): the
+  /// spec model was made from
+  materials::LawSpec lawSpec() const { return {law, C, gvbo}; }
   /// @return whether every rotation leaves the phase's stiffness as it is:
   /// law isotropic or gvbo (isotropic at every J), or a C classified
   /// isotropic to 1e-12 of max |C| (round-off of a C entered isotropic)
