@@ -64,7 +64,9 @@ double ReducedOrderBuilder::memoryBytes(std::size_t voxels, int partitions, bool
   // maps; with micro-inertia the six h spectra (~18) and 6 n influence
   // spectra (~3 each)
   const double per_voxel = 36 + 6 + 3 + 9 + 6 + 1 + (micro_inertia ? 18 + 18 * n : 0);
-  return 8 * per_voxel * N;
+  // and per pair of partitions: P^(beta alpha) (36) and R (36, kept even
+  // without micro-inertia)
+  return 8 * (per_voxel * N + 72 * n * n);
 }
 
 ReducedOrderResult ReducedOrderBuilder::run() {

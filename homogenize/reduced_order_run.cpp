@@ -1,5 +1,7 @@
 #include "homogenize/reduced_order_run.hpp"
 
+#include "materials/reduced_order_law.hpp"
+
 #include "core/error.hpp"
 #include "core/resources.hpp"
 #include "homogenize/library_entry.hpp"
@@ -34,6 +36,11 @@ std::vector<materials::ReducedOrderPhase> reducedOrderPhases(const micro::CellSp
 }
 
 void checkReducible(const micro::CellSpec& spec, const micro::UnitCell& cell) {
+  for (const micro::Phase& ph : spec.phases)
+    if (!ph.J.empty() && !(ph.J.size() == 1 && ph.J[0] == 1.0))
+      throw Error("phase '" + ph.name + "' lists gvbo states J: a reduced-order cell takes "
+                  "every phase at J = 1 (its law then follows J at every point); remove J",
+                  {spec.file, 0, "phases.J"});
   if (cell.oriented.empty())
     return;
   const micro::OrientedVoxel& v = cell.oriented.front();
@@ -53,10 +60,7 @@ ReducedOrderResult buildReducedOrder(const micro::CellSpec& spec, const micro::U
 }
 
 int stateDoublesPerPoint(const materials::ReducedOrderModel& m) {
-  int total = 0;
-  for (std::int32_t p : m.partition_phase)
-    total += 6 + m.phases[static_cast<std::size_t>(p)].law.make()->stateSize();
-  return total;
+  return materials::ReducedOrderLaw("", m).stateSize(); // the law's own layout
 }
 
 materials::Material makeReducedOrderEntry(const std::string& name, const micro::CellSpec& spec,

@@ -56,6 +56,10 @@ Material makeLayup(const std::string& name, const std::vector<Ply>& plies,
   toml::array plyText;
   for (const Ply& p : plies) {
     const Material m = lookup(p.material);
+    if (m.kind == kReducedOrderKind)
+      throw Error("'" + p.material + "' is a reduced-order cell, a nonlinear law: a layup adds "
+                  "elastic stiffnesses (its C alone would drop the law)",
+                  {"", 0, name + ": ply " + p.material});
     // D = sum h_k R_k D_k R_k^T / h (DESIGN.md, "Layered membranes"): the same
     // strain acts through the thickness, so stiffnesses add by thickness.
     // Weights w_k = h_k / h are formed first so that one ply (w = 1) or two equal

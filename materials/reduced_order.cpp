@@ -136,8 +136,10 @@ void readReducedOrderArrays(const std::filesystem::path& path, ReducedOrderModel
                "'format' is '", format, "', expected '", kFormat, "')");
   Dims dims;
   m.partition_phase = f.readInts("/partition_phase", dims);
-  LAMINA_CHECK(dims.size() == 1 && dims[0] >= 1 && dims[0] <= (1u << 16), path.string(),
-               ": dataset /partition_phase must list 1 to 65536 partitions");
+  // 4096 partitions: R alone is then 1.2 GB, and every index (beta n +
+  // alpha, 6 n) stays far inside an int
+  LAMINA_CHECK(dims.size() == 1 && dims[0] >= 1 && dims[0] <= 4096u, path.string(),
+               ": dataset /partition_phase must list 1 to 4096 partitions");
   const std::uint64_t n = dims[0];
   const auto in = static_cast<Eigen::Index>(n);
   m.fraction = readShaped(f, "/fraction", {n});

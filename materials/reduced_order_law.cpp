@@ -27,6 +27,18 @@ double trace(const Vector6& e) {
   return e[0] + e[1] + e[2];
 }
 
+/// The volume ratio of a partition of strain trace @p tr_a in a coarse point
+/// of volume ratio @p J and strain trace @p tr_c. Small kinematics (J = 1 +
+/// tr eps, as the FFT cell and `materials drive --kinematics small` define
+/// it): J_a = 1 + tr_a, exactly the full-field voxel's. Finite kinematics
+/// (eps the integrated rate of deformation, so tr eps = ln J): J_a = J
+/// exp(tr_a - tr_c), exact for that definition.
+double partitionJ(double J, double tr_a, double tr_c) {
+  if (std::abs(J - (1 + tr_c)) <= 1e-12 * std::max(1.0, std::abs(J)))
+    return J + tr_a - tr_c;
+  return J * std::exp(tr_a - tr_c);
+}
+
 } // namespace
 
 /// The nonlinear partitions at trial strains: stresses, tangents,
@@ -60,6 +72,7 @@ ReducedOrderLaw::ReducedOrderLaw(std::string entry, ReducedOrderModel model,
                    " is singular");
       (laws_.back()->isLinear() ? linear_ : nonlinear_).push_back(a);
     }
+    checkPhasesMatchArrays();
   } catch (const Error& e) {
     fail(e.message());
   }
@@ -91,6 +104,22 @@ ReducedOrderLaw::ReducedOrderLaw(std::string entry, ReducedOrderModel model,
   }
 }
 
+void ReducedOrderLaw::checkPhasesMatchArrays() const {
+  // The side file's C was formed as sym(sum c L0 A) with the phases' L0 at
+  // build time: phases edited, swapped or reordered since then no longer
+  // match A and P. Its rounding is ~1e-15 of max|C|: 1e-9 leaves room.
+  Matrix6 C = Matrix6::Zero();
+  for (std::size_t a = 0; a < L0_.size(); ++a)
+    C += model_.fraction[a] * L0_[a] * model_.A[a];
+  C = 0.5 * (C + C.transpose()).eval();
+  const double scale = model_.C.cwiseAbs().maxCoeff();
+  const double diff = (C - model_.C).cwiseAbs().maxCoeff();
+  if (!(diff <= 1e-9 * scale))
+    fail(detail::concat("the phases' laws do not match the side file's arrays (sum c L0 A "
+                        "differs from its C by ",
+                        diff / scale, " of max|C|): were the phases edited or reordered?"));
+}
+
 void ReducedOrderLaw::fail(const std::string& message) const {
   throw Error("reduced-order cell: " + message, {"", 0, entry_});
 }
@@ -111,8 +140,8 @@ void ReducedOrderLaw::evaluate(const PointStep& step, const double* state_n, Tri
     PointStep ps;
     ps.eps_n = Eigen::Map<const Vector6>(block_n);
     ps.eps = t.eps[k];
-    ps.J_n = step.J_n + trace(ps.eps_n) - trace(step.eps_n);
-    ps.J = step.J + trace(ps.eps) - trace(step.eps);
+    ps.J_n = partitionJ(step.J_n, trace(ps.eps_n), trace(step.eps_n));
+    ps.J = partitionJ(step.J, trace(ps.eps), trace(step.eps));
     ps.dt = step.dt;
     if (!(ps.J > 0 && ps.J_n > 0))
       fail(detail::concat("partition ", a, " would reach a volume ratio J = ", ps.J,

@@ -31,8 +31,11 @@
 /// carries no unknowns, and its strain follows once the nonlinear ones are
 /// known. This is what makes a point cheap: a GVBO + elastic cell with 8
 /// partitions per phase solves a 48 x 48 system, not 96 x 96. Each partition
-/// is stepped by its own law from its eps^(alpha)_n with J^(alpha) = J +
-/// tr eps^(alpha) - tr eps^c. Newton on the unknowns, Jacobian
+/// is stepped by its own law from its eps^(alpha)_n with J^(alpha) = 1 +
+/// tr eps^(alpha) in small kinematics (J = 1 + tr eps^c, the FFT cell's
+/// definition) and J^(alpha) = J exp(tr eps^(alpha) - tr eps^c) in finite
+/// kinematics (eps the integrated rate of deformation, tr eps = ln J).
+/// Newton on the unknowns, Jacobian
 ///
 ///     K_(beta alpha) = delta_(beta alpha) I - P^(beta alpha) L0_alpha^-1 (L0_alpha - T_alpha),
 ///
@@ -171,6 +174,9 @@ private:
                         const Eigen::MatrixXd& dmu) const;
   /// K of the file comment from the partition tangents @p T.
   Eigen::MatrixXd jacobian(const std::vector<Matrix6>& T) const;
+  /// Throws unless sym(sum c L0 A) of the phases' laws equals the model's C
+  /// (1e-9 of max|C|): the phases in the library text belong to the arrays.
+  void checkPhasesMatchArrays() const;
   [[noreturn]] void fail(const std::string& message) const;
 
   std::string entry_;

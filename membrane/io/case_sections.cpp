@@ -28,7 +28,11 @@ namespace {
 materials::Material lookupMaterial(materials::MaterialSource& source, const std::string& name,
                                    const core::TableReader& r, const std::string& key) {
   try {
-    return source.get(name);
+    materials::Material m = source.get(name);
+    if (m.kind == materials::kReducedOrderKind)
+      r.fail(key, "'" + name + "' is a reduced-order cell, a nonlinear law: membrane sections "
+                  "take elastic materials (its C alone would drop the law)");
+    return m;
   } catch (const Error& e) {
     if (!e.context().file.empty())
       throw; // a broken library or catalog file: its own file and line

@@ -11,6 +11,7 @@
 #include "core/toml_reader.hpp"
 #include "materials/catalog.hpp"
 #include "materials/material_source.hpp"
+#include "materials/reduced_order_law.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -154,6 +155,35 @@ TEST_F(MalformedReducedOrder, ReducedOrderOptionsOnAnotherLawAreRefused) {
   r = run("export polyurea-cell --format abaqus");
   EXPECT_EQ(r.status, 1);
   EXPECT_TRUE(has(r.err, "--format") && has(r.err, "reduced-order") && has(r.err, "json")) << r.err;
+}
+
+} // namespace
+} // namespace lamina
+
+namespace lamina {
+namespace {
+
+// The phases live in the library text, outside the side file's checksum:
+// swapping them (or editing a modulus) must not give a law whose L0 no
+// longer belongs to A and P. The law checks sum c L0 A against the side
+// file's C (1e-9 of max|C|; the swap changes it by tens of per cent).
+TEST(MalformedReducedOrderPhases, PhasesThatDoNotMatchTheArraysAreRefused) {
+  materials::ReducedOrderModel m = test::polyureaLaminate();
+  std::swap(m.phases[0].law, m.phases[1].law);
+  const std::string e = test::errorOf([&] { materials::ReducedOrderLaw("swapped", m); });
+  EXPECT_NE(e.find("'swapped'"), std::string::npos) << e;
+  EXPECT_NE(e.find("do not match the side file"), std::string::npos) << e;
+}
+
+// A membrane section or a layup ply naming a reduced-order entry would use
+// its C alone and drop the law: refused, naming the entry.
+TEST(MalformedReducedOrderPhases, LayupOfAReducedOrderEntryIsRefused) {
+  test::TempDir dir;
+  const auto lib = dir.path() / "library.toml";
+  test::addReducedOrderEntry(lib, "pu-cell", test::polyureaLaminate());
+  const test::RunResult r = test::runMaterials(dir, lib, "layup lay --ply pu-cell:0:0.001");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("'pu-cell' is a reduced-order cell"), std::string::npos) << r.err;
 }
 
 } // namespace
