@@ -230,7 +230,12 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
   }
   Eigen::VectorXd r(6 * idx(m));
   int iterations = 0;
-  double norm = 0;
+  double norm = 0, last_norm = 0;
+  // Newton with the Jacobian kept while it works: the partition tangents
+  // leave out the moduli's change with J, so the iteration converges
+  // linearly anyway where that matters; a Jacobian is formed and factored
+  // again only when the residual fell by less than 4x in the last step.
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   for (;;) {
     evaluate(step, state_n, t);
     double scale = step.eps.cwiseAbs().maxCoeff();
@@ -251,7 +256,10 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
                           "residual ",
                           norm, " after ", iterations, " iterations (tolerance ",
                           options_.tolerance, " x ", scale, ")"));
-    const Eigen::VectorXd dx = jacobian(t.T).partialPivLu().solve(r);
+    if (iterations == 0 || norm > 0.25 * last_norm)
+      lu.compute(jacobian(t.T));
+    last_norm = norm;
+    const Eigen::VectorXd dx = lu.solve(r);
     for (std::size_t k = 0; k < m; ++k)
       t.eps[k] -= dx.segment<6>(6 * idx(k));
     ++iterations;
