@@ -1,5 +1,6 @@
 #include "core/checksum.hpp"
 
+#include "core/error.hpp"
 #include "core/input_file.hpp"
 
 #include <algorithm>
@@ -22,11 +23,16 @@ std::string Fnv1a::hex() const {
   return buf;
 }
 
-std::string fileChecksum(const std::filesystem::path& path, const std::string& what) {
+std::string fileChecksum(const std::filesystem::path& path, const std::string& what,
+                         std::uint64_t from) {
   const InputFile in(path, what, kMaxHdf5Bytes);
+  if (in.size() < from)
+    throw Error("the " + what + " has " + std::to_string(in.size()) + " bytes, fewer than its " +
+                    std::to_string(from) + "-byte header",
+                {path.string(), 0, ""});
   Fnv1a f;
   std::vector<unsigned char> block(1u << 20);
-  for (std::uint64_t offset = 0; offset < in.size();) {
+  for (std::uint64_t offset = from; offset < in.size();) {
     const std::size_t n =
         static_cast<std::size_t>(std::min<std::uint64_t>(block.size(), in.size() - offset));
     in.readAt(offset, block.data(), n);

@@ -30,6 +30,9 @@ private:
 /// file @p path (read in blocks through the input-file gate:
 /// input_file.hpp); throws lamina::Error naming @p what and the file if it
 /// is not a readable regular file.
-std::string fileChecksum(const std::filesystem::path& path, const std::string& what = "file");
+/// @param from the first byte covered (bytes before it are left out; a
+/// file shorter than that is an error)
+std::string fileChecksum(const std::filesystem::path& path, const std::string& what = "file",
+                         std::uint64_t from = 0);
 
 } // namespace lamina::core

@@ -47,7 +47,8 @@ std::string hdf5TruncationReason() {
   return reason;
 }
 
-H5File::H5File(const std::filesystem::path& path, Mode mode) : path_(path) {
+H5File::H5File(const std::filesystem::path& path, Mode mode, std::uint64_t userblock)
+    : path_(path) {
   hid_t id = -1;
   if (mode != Mode::Create) // HDF5 would block on a FIFO and read a device
     checkRegularInput(path, "HDF5 file", kMaxHdf5Bytes);
@@ -55,7 +56,14 @@ H5File::H5File(const std::filesystem::path& path, Mode mode) : path_(path) {
     checkReplaceable(path);
   switch (mode) {
   case Mode::Create:
-    id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (userblock > 0) {
+      const H5Handle fcpl(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+      if (fcpl.id() < 0 || H5Pset_userblock(fcpl.id(), userblock) < 0)
+        fail("cannot set a user block of " + std::to_string(userblock) + " bytes", "/");
+      id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, fcpl.id(), H5P_DEFAULT);
+    } else {
+      id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    }
     break;
   case Mode::ReadOnly:
     id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);

@@ -45,7 +45,10 @@ class H5File {
 public:
   enum class Mode { Create, ReadOnly, ReadWrite };
   /// Opens or creates @p path. Throws lamina::Error on failure.
-  H5File(const std::filesystem::path& path, Mode mode);
+  /// With Mode::Create and @p userblock > 0 (a power of two, >= 512), the
+  /// file starts with that many bytes HDF5 leaves alone (its user block),
+  /// for the writer's own header.
+  H5File(const std::filesystem::path& path, Mode mode, std::uint64_t userblock = 0);
 
   /// Creates group @p name (and its parents) if missing.
   void createGroup(const std::string& name);
