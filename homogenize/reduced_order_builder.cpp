@@ -232,10 +232,7 @@ void ReducedOrderBuilder::influenceFunctions(ReducedOrderResult& res) {
 
 void ReducedOrderBuilder::finish(ReducedOrderResult& res) const {
   materials::ReducedOrderModel& m = res.model;
-  materials::Matrix6 C = materials::Matrix6::Zero();
-  for (std::size_t b = 0; b < m.A.size(); ++b)
-    C += m.fraction[b] * L0_[static_cast<std::size_t>(m.partition_phase[b])].matrix() * m.A[b];
-  m.C = 0.5 * (C + C.transpose());
+  m.C = m.referenceStiffness(L0_);
   const std::vector<std::size_t> count = voxelsPerPhase(phase_, phases_.size());
   m.density = 0;
   for (std::size_t p = 0; p < phases_.size(); ++p)

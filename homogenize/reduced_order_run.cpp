@@ -14,14 +14,6 @@ namespace lamina::homogenize {
 
 namespace {
 
-/// @return the number of partitions of each phase of @p m
-std::vector<int> partitionsPerPhase(const materials::ReducedOrderModel& m) {
-  std::vector<int> count(m.phases.size(), 0);
-  for (std::int32_t p : m.partition_phase)
-    ++count[static_cast<std::size_t>(p)];
-  return count;
-}
-
 const char* methodName(PartitionMethod m) {
   return m == PartitionMethod::KMeans ? "k-means" : "phase";
 }
@@ -70,7 +62,7 @@ materials::Material makeReducedOrderEntry(const std::string& name, const micro::
   const materials::ReducedOrderModel& model = result.model;
   materials::Material m;
   m.name = name;
-  m.kind = "reduced-order";
+  m.kind = materials::kReducedOrderKind;
   m.C = materials::Stiffness(model.C);
   m.density = model.density;
   m.phases = model.phases;
@@ -83,7 +75,7 @@ materials::Material makeReducedOrderEntry(const std::string& name, const micro::
   p.insert("phase_sources", sources);
   p.insert("phase_map", "plain: each voxel its centre's phase (composite voxels do not enter)");
   p.insert("partitions", model.partitions());
-  for (int k : partitionsPerPhase(model))
+  for (int k : model.partitionsPerPhase())
     per_phase.push_back(k);
   p.insert("partitions_per_phase", per_phase);
   p.insert("partition_method", methodName(options.partitions.method));
@@ -139,7 +131,7 @@ nlohmann::json reducedOrderJson(const std::string& name, const ReducedOrderResul
   j["partition_phase"] = m.partition_phase;
   j["fractions"] = m.fraction;
   nlohmann::json per_phase = nlohmann::json::object();
-  const std::vector<int> count = partitionsPerPhase(m);
+  const std::vector<int> count = m.partitionsPerPhase();
   for (std::size_t p = 0; p < m.phases.size(); ++p)
     per_phase[m.phases[p].name] = count[p];
   j["partitions_per_phase"] = per_phase;
@@ -162,7 +154,7 @@ std::string reducedOrderSummary(const std::string& name, const ReducedOrderResul
   const ReducedOrderCost& c = result.cost;
   std::ostringstream os;
   os << name << ": reduced-order cell of " << m.partitions() << " partitions (";
-  const std::vector<int> count = partitionsPerPhase(m);
+  const std::vector<int> count = m.partitionsPerPhase();
   for (std::size_t p = 0; p < m.phases.size(); ++p)
     os << (p ? ", " : "") << m.phases[p].name << " " << count[p];
   os << "), density " << m.density << " kg/m^3\n";

@@ -351,9 +351,7 @@ void driveEntry(Args a, const std::filesystem::path& library) {
 /// and partitions, and the state per point (reads the side file).
 void showReducedOrder(const mat::Library& lib, const mat::Material& m, nlohmann::json* json) {
   const mat::ReducedOrderLaw law(m.name, mat::readReducedOrderEntry(lib, m));
-  std::vector<int> count(m.phases.size(), 0);
-  for (std::int32_t p : law.model().partition_phase)
-    ++count[static_cast<std::size_t>(p)];
+  const std::vector<int> count = law.model().partitionsPerPhase();
   if (json) {
     for (std::size_t p = 0; p < m.phases.size(); ++p)
       (*json)["phases"][p]["partitions"] = count[p];

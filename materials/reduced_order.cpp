@@ -76,6 +76,20 @@ Eigen::MatrixXd matrix(const std::vector<double>& v, Eigen::Index rows, Eigen::I
 
 } // namespace
 
+std::vector<int> ReducedOrderModel::partitionsPerPhase() const {
+  std::vector<int> count(phases.size(), 0);
+  for (std::int32_t p : partition_phase)
+    ++count[static_cast<std::size_t>(p)];
+  return count;
+}
+
+Matrix6 ReducedOrderModel::referenceStiffness(const std::vector<Stiffness>& L0) const {
+  Matrix6 C = Matrix6::Zero();
+  for (std::size_t b = 0; b < A.size(); ++b)
+    C += fraction[b] * L0[static_cast<std::size_t>(partition_phase[b])].matrix() * A[b];
+  return 0.5 * (C + C.transpose());
+}
+
 void ReducedOrderModel::validate(const std::string& where) const {
   const int n = partitions();
   const auto un = static_cast<std::size_t>(n);

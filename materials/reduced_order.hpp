@@ -67,6 +67,12 @@ struct ReducedOrderModel {
 
   /// @return the number of partitions n
   int partitions() const { return static_cast<int>(fraction.size()); }
+  /// @return the number of partitions of each phase
+  std::vector<int> partitionsPerPhase() const;
+  /// @return sym(sum_alpha c_alpha L0 A^(alpha)) with @p L0 the reference
+  /// stiffness of each phase: the cell's stiffness while every phase is
+  /// elastic (what C holds)
+  Matrix6 referenceStiffness(const std::vector<Stiffness>& L0) const;
   /// Throws lamina::Error prefixed by @p where unless the invariants hold.
   void validate(const std::string& where) const;
 };

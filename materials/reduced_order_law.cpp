@@ -108,10 +108,10 @@ void ReducedOrderLaw::checkPhasesMatchArrays() const {
   // The side file's C was formed as sym(sum c L0 A) with the phases' L0 at
   // build time: phases edited, swapped or reordered since then no longer
   // match A and P. Its rounding is ~1e-15 of max|C|: 1e-9 leaves room.
-  Matrix6 C = Matrix6::Zero();
-  for (std::size_t a = 0; a < L0_.size(); ++a)
-    C += model_.fraction[a] * L0_[a] * model_.A[a];
-  C = 0.5 * (C + C.transpose()).eval();
+  std::vector<Stiffness> L0(model_.phases.size());
+  for (std::size_t a = 0; a < laws_.size(); ++a)
+    L0[uz(model_.partition_phase[a])] = Stiffness(L0_[a]);
+  const Matrix6 C = model_.referenceStiffness(L0);
   const double scale = model_.C.cwiseAbs().maxCoeff();
   const double diff = (C - model_.C).cwiseAbs().maxCoeff();
   if (!(diff <= 1e-9 * scale))
