@@ -2,6 +2,7 @@
 /// @file section.hpp
 /// @brief The material of one mesh region as the membrane models need it.
 
+#include "materials/law.hpp"
 #include "materials/stiffness.hpp"
 
 #include <Eigen/Dense>
@@ -12,10 +13,19 @@
 namespace lamina::membrane {
 
 /// Material of one region as the solver needs it.
+///
+/// A section holds a constitutive law (materials/law.hpp). A linear law (or
+/// none, in a model built by hand) is its stiffness D, and the models keep
+/// their fast paths for it: the linear membrane assembles K from D, the
+/// large-deflection membrane computes S = C_ps E from D. A nonlinear law
+/// (GVBO, a reduced-order cell) is stepped at every element with its own
+/// state (large-deflection model only); D is then its instantaneous
+/// stiffness at rest, law->elasticStiffness(1), for the summary.
 struct Section {
   std::string name;     ///< region name
-  std::string material; ///< where D came from (for the summary)
-  materials::Matrix6 D; ///< 6x6 stiffness, lamina order, Pa
+  std::string material; ///< where the law came from (for the summary)
+  materials::LawPtr law; ///< the law; nullptr: linear elastic with D
+  materials::Matrix6 D; ///< 6x6 stiffness, lamina order, Pa (see above)
   double density = 0;   ///< kg/m^3
   double thickness = 0; ///< m
   // Large-deflection model only (model = "large_deflection"):
@@ -32,6 +42,8 @@ struct Section {
   /// zeta^2 D, 6x6, lamina order, kg/m; zero = none. It adds the gradient
   /// inertia h A B^T (zeta^2 D) B of each element to the mass.
   materials::Matrix6 dispersion = materials::Matrix6::Zero();
+  /// @return true when the section is linear elastic with D (no law, or a linear one)
+  bool isLinear() const { return !law || law->isLinear(); }
   /// @return whether the section carries micro-inertia
   bool hasMicroInertia() const { return dispersion.cwiseAbs().maxCoeff() > 0; }
 };
