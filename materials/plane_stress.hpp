@@ -102,7 +102,8 @@ struct PlaneStressStep {
   int n_free = 0;          ///< 0..3 in-plane directions whose amplitude is unknown (wrinkling)
   /// d_k (engineering-strain Voigt [xx, yy, xy]); the first n_free are used
   /// and must be linearly independent
-  std::array<Eigen::Vector3d, 3> free_dir{};
+  std::array<Eigen::Vector3d, 3> free_dir{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                                          Eigen::Vector3d::Zero()};
 };
 
 /// What one plane-stress step computes.
