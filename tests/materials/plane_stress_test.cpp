@@ -9,8 +9,8 @@
 
 #include "materials/catalog.hpp"
 #include "materials/gvbo_law.hpp"
-#include "materials/kinematics.hpp"
 #include "materials/plane_stress.hpp"
+#include "plane_stress_point.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -20,6 +20,8 @@
 #include <vector>
 
 namespace mat = lamina::materials;
+using lamina::test::BiaxialPoint;
+using lamina::test::inPlane;
 using mat::Vector6;
 
 namespace {
@@ -33,10 +35,6 @@ Eigen::Matrix3d isotropicPlaneStress(double E, double nu) {
   return E / (1 - nu * nu) * C;
 }
 
-Eigen::Vector3d inPlane(const Vector6& s) {
-  return {s[0], s[1], s[3]};
-}
-
 double maxAbs(const Eigen::Matrix3d& m) {
   return m.cwiseAbs().maxCoeff();
 }
@@ -45,38 +43,6 @@ mat::GvboLaw polyurea() {
   static const mat::Catalog cat;
   return mat::GvboLaw(*cat.get("polyurea-gvbo").gvbo);
 }
-
-/// A point under equibiaxial in-plane stretch F_p = (1 + e) I_2 driven
-/// through planeStressUpdate, the in-plane increments from finiteIncrement.
-struct BiaxialPoint {
-  const mat::ConstitutiveLaw& law;
-  std::vector<double> state;
-  Vector6 eps = Vector6::Zero();
-  double lambda3 = 1, e = 0;
-  explicit BiaxialPoint(const mat::ConstitutiveLaw& l)
-      : law(l), state(static_cast<std::size_t>(l.stateSize())) {
-    law.initState(state.data());
-  }
-  static Eigen::Matrix3d F(double e) { return Eigen::Vector3d(1 + e, 1 + e, 1).asDiagonal(); }
-  mat::PlaneStressStep step(double e_new, double dt) const {
-    mat::PlaneStressStep s;
-    s.eps_n = eps;
-    s.deps_p = inPlane(mat::finiteIncrement(F(e), F(e_new)).deps);
-    s.lambda3_n = lambda3;
-    s.J2_n = (1 + e) * (1 + e);
-    s.J2 = (1 + e_new) * (1 + e_new);
-    s.dt = dt;
-    return s;
-  }
-  mat::PlaneStressResult advance(double e_new, double dt, bool tangent = false) {
-    const mat::PlaneStressResult r =
-        mat::planeStressUpdate(law, step(e_new, dt), state.data(), state.data(), tangent);
-    eps = r.eps;
-    lambda3 = r.lambda3;
-    e = e_new;
-    return r;
-  }
-};
 
 } // namespace
 
