@@ -57,30 +57,56 @@ struct WrinkledStep {
   materials::PlaneStressResult r;
   Eigen::Vector3d eps_w = Eigen::Vector3d::Zero(); ///< wrinkling strain at t_{n+1}
   Wrinkle state = Wrinkle::Taut;
+  double J2 = 1; ///< the law's area ratio (the element's without the wrinkles)
 };
+
+/// The area ratio of the material under wrinkling strain @p eps_w, relative to
+/// the element's: (2 - tr)/(2 + tr), tr = eps_w,xx + eps_w,yy (the midpoint
+/// rule's exp(-tr), exact to third order).
+double wrinkledArea(const Eigen::Vector3d& eps_w) {
+  const double tr = eps_w[0] + eps_w[1];
+  return (2 - tr) / (2 + tr);
+}
+
+/// The wrinkled (one free direction) or slack (three) solve. The law's area
+/// ratio is the element's less the wrinkles' (the material is not compressed
+/// by wrinkling): taken from the wrinkling strain of a first solve, then
+/// solved again with it.
+void solveWrinkled(const materials::ConstitutiveLaw& law, materials::PlaneStressStep ps,
+                   const double* state_n, double* state, WrinkledStep& w) {
+  const double J2 = ps.J2;
+  for (int pass = 0; pass < 2; ++pass) {
+    ps.J2 = J2 * wrinkledArea(w.eps_w);
+    w.r = materials::planeStressUpdate(law, ps, state_n, state, false);
+    w.eps_w.setZero();
+    for (int k = 0; k < ps.n_free; ++k)
+      w.eps_w -= w.r.amplitude[static_cast<size_t>(k)] * ps.free_dir[static_cast<size_t>(k)];
+  }
+  w.J2 = J2 * wrinkledArea(w.eps_w);
+}
 
 /// Solves the step, taut first; with @p tension_only, wrinkled or slack when
 /// the taut stress has a compressive principal value (see the file comment).
 WrinkledStep solve(const materials::ConstitutiveLaw& law, materials::PlaneStressStep ps,
                    bool tension_only, const double* state_n, double* state) {
   WrinkledStep w;
+  w.J2 = ps.J2;
   w.r = materials::planeStressUpdate(law, ps, state_n, state, false);
   if (!tension_only || principal(w.r.sigma)[1] >= 0)
     return w;
   if (principal(w.r.sigma)[0] > 0) {
     ps.n_free = 1;
     ps.free_dir[0] = dyad(minorDirection(w.r.sigma[0], w.r.sigma[1], w.r.sigma[3]));
-    w.r = materials::planeStressUpdate(law, ps, state_n, state, false);
+    solveWrinkled(law, ps, state_n, state, w);
     w.state = Wrinkle::Wrinkled;
-    w.eps_w = -w.r.amplitude[0] * ps.free_dir[0];
     if (principal(w.r.sigma)[0] > 0)
       return w;
   }
   ps.n_free = 3;
   ps.free_dir = {Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ()};
-  w.r = materials::planeStressUpdate(law, ps, state_n, state, false);
+  w.eps_w.setZero();
+  solveWrinkled(law, ps, state_n, state, w);
   w.state = Wrinkle::Slack;
-  w.eps_w = -Eigen::Vector3d(w.r.amplitude[0], w.r.amplitude[1], w.r.amplitude[2]);
   return w;
 }
 
@@ -115,22 +141,22 @@ Eigen::Vector3d stepLawPoint(const materials::ConstitutiveLaw& law, const Matrix
   for (int i = 0; i < 3; ++i)
     ps.deps_p[i] = inc.deps[kPlane[i]] + eps_w_n[i]; // the previous wrinkles released
   ps.lambda3_n = block_n[P::kLambda3];
-  ps.J2_n = inc.J_n;
+  ps.J2_n = block_n[P::kJ] / block_n[P::kLambda3]; // the law's, wrinkles removed
   ps.J2 = inc.J;
   ps.dt = dt;
   const WrinkledStep w = solve(law, ps, tension_only, block_n + P::kLaw, block + P::kLaw);
   LAMINA_CHECK(w.r.sigma.allFinite() && std::isfinite(w.r.lambda3) && w.r.lambda3 > 0,
                "the law's stress or thickness stretch is not finite");
-  const double J = inc.J * w.r.lambda3, J_n = block_n[P::kJ];
+  const double J = w.J2 * w.r.lambda3, J_n = block_n[P::kJ];
   // Energy per reference volume: trapezoidal work over the law's strain, stored, dissipated.
   const Vector6 deps = w.r.eps - ps.eps_n;
   Vector6 sigma_n = Vector6::Zero();
   for (int i = 0; i < 3; ++i)
     sigma_n[kPlane[i]] = block_n[P::kSigma + i];
   const double work = 0.5 * (J_n * sigma_n + J * w.r.sigma).dot(deps);
-  const materials::Matrix6 C = law.elasticStiffness(J).matrix();
-  const double psi = J * 0.5 * w.r.sigma.dot(C.ldlt().solve(w.r.sigma)); // TODO storedEnergy
-  const double inelastic = equivalentDeviatoric(deps - C.ldlt().solve(w.r.sigma - sigma_n));
+  const double psi = J * law.storedEnergy(w.r.sigma, block + P::kLaw, J);
+  const double inelastic =
+      equivalentDeviatoric(deps - law.elasticStiffness(J).matrix().ldlt().solve(w.r.sigma - sigma_n));
   // The new history.
   Eigen::Map<Matrix32>(block + P::kF) = F;
   Eigen::Map<Vector6>(block + P::kEps) = w.r.eps;

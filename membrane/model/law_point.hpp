@@ -32,6 +32,10 @@
 /// (eps_w takes the whole in-plane strain, sigma = 0). The law sees the
 /// strain minus eps_w, so its state stays consistent; eps_w is not
 /// accumulated (each step releases the previous one and solves it again).
+/// Wrinkles do not compress the material: the law's area ratio is the
+/// element's J2 times (2 - tr eps_w)/(2 + tr eps_w) (the midpoint rule's
+/// exp(-tr eps_w)), found by solving twice, and J = that times lambda3 is
+/// both the law's volume ratio and the one in S below.
 ///
 /// **Energy** per unit reference volume: the work of the stress over the
 /// law's strain by the trapezoidal rule, w += (J_n sigma_n + J sigma) .

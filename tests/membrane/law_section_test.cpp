@@ -86,6 +86,44 @@ TEST(LawSection, SingleElementMatchesDriveOnTheBiaxialStressPath) {
   }
 }
 
+// Wrinkling composes with the law: an element stretched along x at 1e2 /s
+// while its y side shortens at the same rate wrinkles (the law's lateral
+// contraction, about nu e, is less than e), so the law sees uniaxial stress:
+// its stress along x equals `materials drive --path uniaxial-stress` at the
+// same rate, the stress along y vanishes. Tolerance 1e-3 of the peak: the
+// law's area ratio under wrinkles is taken as the element's times
+// (2 - tr eps_w)/(2 + tr eps_w), exp(-tr eps_w) to third order in eps_w
+// (~0.1 here: 1e-4 in J, whose effect on the moduli the drive has exactly).
+TEST(LawSection, WrinkledElementCarriesTheLawsUniaxialStress) {
+  const double rate = 1e2, to = 0.1;
+  const int steps = 100;
+  const double dt = to / rate / steps;
+  materials::DriveOptions o;
+  o.path = materials::DrivePath::UniaxialStress;
+  o.rate = rate;
+  o.to = to;
+  o.steps = steps;
+  const auto rows = materials::drive(*polyurea(), o);
+  Model m = polyureaSquare(1, "dt = " + core::formatExact(dt) + "\nt_end = 1.0\n");
+  m.sections[0].tension_only = true;
+  m.constraints = {uniformStretch(m.mesh, rate, -rate)};
+  Simulation sim(m);
+  const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());
+  double peak = 0;
+  for (const auto& r : rows)
+    peak = std::max(peak, std::abs(r.sigma[0]));
+  for (int n = 1; n <= steps; ++n) {
+    sim.step();
+    for (int e = 0; e < m.mesh.numElements(); ++e) {
+      const double* b = ld.history(e);
+      EXPECT_EQ(b[LawPoint::kWrinkleState], 1.0) << "step " << n;
+      EXPECT_NEAR(b[LawPoint::kSigma], rows[n].sigma[0], 1e-3 * peak) << "step " << n;
+      EXPECT_NEAR(b[LawPoint::kSigma + 1], 0.0, 1e-8 * peak) << "step " << n;
+      EXPECT_NEAR(b[LawPoint::kSigma + 2], 0.0, 1e-8 * peak) << "step " << n;
+    }
+  }
+}
+
 // At a very high rate (1e5 /s to 1 %) the overstress has no time to relax:
 // GVBO responds with its instantaneous moduli (E0, nu0 of Table 5), so its
 // stress equals that of the elastic section with E0, nu0 within 2 % (the
