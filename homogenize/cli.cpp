@@ -211,7 +211,8 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_flag("--quiet", cli.quiet, "no progress line");
   // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
   app.add_option("--path", names.path,
-                 "nonlinear run: uniaxial-strain | shear | confined | uniaxial-stress (with "
+                 "nonlinear run: uniaxial-strain | shear | confined | uniaxial-stress | "
+                 "biaxial-stress (with "
                  "--out, --rate and --to are required; with --tangent-rates: the path to "
                  "--tangent-strain)")
       ->check(CLI::IsMember(lamina::materials::drivePathNames()));

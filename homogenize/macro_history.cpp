@@ -34,7 +34,12 @@ MacroHistory pathHistory(materials::DrivePath path, double rate, double to, int 
     for (int i = 1; i < 6; ++i)
       h.stress_controlled[static_cast<std::size_t>(i)] = true;
     break;
+  case materials::DrivePath::BiaxialStress:
+    for (int i = 2; i < 6; ++i)
+      h.stress_controlled[static_cast<std::size_t>(i)] = true;
+    break;
   }
+  const bool biaxial = path == materials::DrivePath::BiaxialStress;
   const double dt = to / rate / steps;
   const int total = unload ? 2 * steps : steps;
   for (int n = 1; n <= total; ++n) {
@@ -42,6 +47,8 @@ MacroHistory pathHistory(materials::DrivePath path, double rate, double to, int 
     MacroStep s;
     s.t = n * dt;
     s.value[static_cast<std::size_t>(driven)] = sign * to * k / steps;
+    if (biaxial)
+      s.value[1] = s.value[0]; // E_yy = E_xx
     h.steps.push_back(s);
   }
   return h;

@@ -28,7 +28,8 @@ struct MacroHistory {
 /// The paths of `materials drive` as cell loadings (small strain):
 /// uniaxial-strain E_xx = rate t; confined E_xx = -rate t; shear
 /// E_xy = rate t (engineering), all other strains zero; uniaxial-stress
-/// E_xx = rate t with the other five stresses zero. @p steps per leg; with
+/// E_xx = rate t with the other five stresses zero; biaxial-stress E_xx =
+/// E_yy = rate t with the other four stresses zero. @p steps per leg; with
 /// @p unload back to zero at the same rate.
 MacroHistory pathHistory(materials::DrivePath path, double rate, double to, int steps, bool unload);
 

@@ -158,7 +158,8 @@ CLI::App* addDriveCommand(CLI::App& app, Args& a) {
   auto* cmd = app.add_subcommand(
       "drive", "drive one material point along a strain path at a constant rate (CSV)");
   cmd->add_option("NAME", a.name, "library entry or catalog material")->required();
-  cmd->add_option("--path", a.path_name, "uniaxial-stress | uniaxial-strain | shear | confined")
+  cmd->add_option("--path", a.path_name,
+                  "uniaxial-stress | biaxial-stress | uniaxial-strain | shear | confined")
       ->check(CLI::IsMember(mat::drivePathNames()));
   cmd->add_option("--rate", a.drive.rate, "driven strain rate (1/s, 1e-12 to 1e12; required)")
       ->required(); // range checked by checkRate (the same rule as homogenize)

@@ -15,8 +15,9 @@ namespace lamina::materials {
 
 namespace {
 
-constexpr std::array<std::pair<DrivePath, const char*>, 4> kPathNames{{
+constexpr std::array<std::pair<DrivePath, const char*>, 5> kPathNames{{
     {DrivePath::UniaxialStress, "uniaxial-stress"},
+    {DrivePath::BiaxialStress, "biaxial-stress"},
     {DrivePath::UniaxialStrain, "uniaxial-strain"},
     {DrivePath::Shear, "shear"},
     {DrivePath::Confined, "confined"},
@@ -38,6 +39,11 @@ Eigen::Matrix3d pathF(DrivePath path, double e, const Eigen::Vector2d& l) {
   case DrivePath::UniaxialStress:
     F(0, 0) += e;
     F(1, 1) += l[0];
+    F(2, 2) += l[1];
+    break;
+  case DrivePath::BiaxialStress:
+    F(0, 0) += e;
+    F(1, 1) += e;
     F(2, 2) += l[1];
     break;
   }
@@ -158,8 +164,38 @@ void csvNumber(std::ostream& os, double x, bool first = false) {
   os << buf;
 }
 
+/// The lateral Newton of the stress paths: the stresses of the free lateral
+/// components (uniaxial stress: yy, zz by l_y, l_z; biaxial stress: zz by
+/// l_z) to zero, with the tangent's lateral block (d eps_hat / d l = 1 /
+/// F_ll at the midpoint). Updates @p l, @p F, @p sigma and @p T.
+void lateralNewton(Point& point, const DriveOptions& o, double e, double dt, Eigen::Vector2d& l,
+                   Eigen::Matrix3d& F, Vector6& sigma, Matrix6& T) {
+  const bool uniaxial = o.path == DrivePath::UniaxialStress;
+  // relative to the driven stress of the current iterate (not of the first
+  // trial, whose lateral constraint makes it larger)
+  const auto converged = [&] {
+    const double driven =
+        uniaxial ? std::abs(sigma[0]) : std::max(std::abs(sigma[0]), std::abs(sigma[1]));
+    const double lateral =
+        uniaxial ? std::max(std::abs(sigma[1]), std::abs(sigma[2])) : std::abs(sigma[2]);
+    return lateral <= 1e-10 * std::max(driven, 1.0) + 1e-6;
+  };
+  for (int it = 0; !converged();) {
+    LAMINA_CHECK(++it <= 50, toString(o.path), ": lateral stress did not vanish");
+    if (uniaxial) {
+      Eigen::Matrix2d Tl;
+      Tl << T(1, 1) / F(1, 1), T(1, 2) / F(2, 2), T(2, 1) / F(1, 1), T(2, 2) / F(2, 2);
+      l -= Tl.lu().solve(Eigen::Vector2d(sigma[1], sigma[2]));
+    } else {
+      l[1] -= sigma[2] / (T(2, 2) / F(2, 2));
+    }
+    F = pathF(o.path, e, l);
+    sigma = point.trial(F, dt, &T);
+  }
+}
+
 /// Step @p n of drive(): the trial at the path's strain (with the lateral
-/// Newton of uniaxial stress, updating @p l), reported and committed.
+/// Newton of the stress paths, updating @p l), reported and committed.
 DriveRow driveStep(Point& point, const DriveOptions& o, int n, double dt, Eigen::Vector2d& l,
                    const std::function<void(const DriveStep&)>& observer) {
   const int k = n <= o.steps ? n : 2 * o.steps - n;
@@ -167,20 +203,8 @@ DriveRow driveStep(Point& point, const DriveOptions& o, int n, double dt, Eigen:
   Eigen::Matrix3d F = pathF(o.path, e, l);
   Matrix6 T;
   Vector6 sigma = point.trial(F, dt, &T);
-  if (o.path == DrivePath::UniaxialStress) {
-    // lateral stresses to zero: Newton on (l_y, l_z) with the tangent's
-    // lateral block (d eps_hat / d l = 1 / F_ll at the midpoint)
-    int it = 0;
-    const double tol = 1e-10 * std::max(std::abs(sigma[0]), 1.0) + 1e-6;
-    while (std::max(std::abs(sigma[1]), std::abs(sigma[2])) > tol) {
-      LAMINA_CHECK(++it <= 50, "uniaxial stress: lateral stress did not vanish");
-      Eigen::Matrix2d Tl;
-      Tl << T(1, 1) / F(1, 1), T(1, 2) / F(2, 2), T(2, 1) / F(1, 1), T(2, 2) / F(2, 2);
-      l -= Tl.lu().solve(Eigen::Vector2d(sigma[1], sigma[2]));
-      F = pathF(o.path, e, l);
-      sigma = point.trial(F, dt, &T);
-    }
-  }
+  if (o.path == DrivePath::UniaxialStress || o.path == DrivePath::BiaxialStress)
+    lateralNewton(point, o, e, dt, l, F, sigma, T);
   DriveRow row;
   row.t = n * dt;
   if (observer)

@@ -9,7 +9,13 @@
 /// - confined: confined compression, F = diag(1 - e, 1, 1);
 /// - shear: simple shear F = I + e e_x (x) e_y (eps_xy = e driven);
 /// - uniaxial-stress: F = diag(1 + e, 1 + l_y, 1 + l_z) with l_y, l_z such
-///   that sigma_yy = sigma_zz = 0 (Newton with the consistent tangent).
+///   that sigma_yy = sigma_zz = 0 (Newton with the consistent tangent);
+/// - biaxial-stress: equibiaxial plane stress, F = diag(1 + e, 1 + e, 1 +
+///   l_z) with l_z such that sigma_zz = 0 (the same Newton on l_z alone): a
+///   membrane under equibiaxial stretch, computed through F and
+///   finiteIncrement(), independently of planeStressUpdate (plane_stress.hpp).
+/// The lateral Newton stops when the free stresses are below 1e-10 of the
+/// driven stress (at least 1 Pa) plus 1e-6 Pa.
 /// Finite kinematics (default): each step F_n -> F goes through
 /// finiteIncrement() (rotation-free frame of eq. 5, J = det F) and the
 /// Cauchy stress is R sigma_hat R^T. Small kinematics: eps = sym(F - I),
@@ -29,7 +35,7 @@
 namespace lamina::materials {
 
 /// The strain paths of `materials drive`.
-enum class DrivePath { UniaxialStress, UniaxialStrain, Shear, Confined };
+enum class DrivePath { UniaxialStress, BiaxialStress, UniaxialStrain, Shear, Confined };
 /// @return the command-line spelling ("uniaxial-stress", ...)
 const char* toString(DrivePath p);
 /// @return the path of spelling @p name, or nothing
@@ -90,7 +96,7 @@ struct DriveStep {
 
 /// Drives @p law; first row t = 0. @p observer (if set) sees every accepted
 /// step before its state is committed. Throws lamina::Error on bad options
-/// or when the uniaxial-stress iteration does not converge; an error of the
+/// or when the lateral iteration of a stress path does not converge; an error of the
 /// law (or of the observer) is rethrown with the step number and t in front
 /// of its message, its context kept.
 std::vector<DriveRow> drive(const ConstitutiveLaw& law, const DriveOptions& options,

@@ -49,9 +49,10 @@ public:
     int interrupted = 0; // SIGINT/SIGTERM: stop after this step, outputs as they are
     bool stopped = false;
     const long ce = model_.output.checkpoint_every;
-    for (long s = sim.steps() + 1; s <= steps && !failure && !interrupted && !stopped; ++s) {
+    for (long s = sim.steps() + 1; more(s) && !failure && !interrupted && !stopped; ++s) {
       try {
         sim.step();
+        reached_end_ = endReached(sim);
         interrupted = core::interruptSignal();
         record(sim, fieldStep(s), energyStep(s));
       } catch (const DivergenceError& e) {
@@ -106,11 +107,16 @@ private:
     steps_ = model_.time.integrator == IntegratorKind::Newmark
                  ? std::lround(model_.time.t_end / dt)
                  : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
+    // A law with history changes the explicit step as the run goes
+    // (Simulation::adaptStep): the run ends at t_end, steps_ is an estimate.
+    adaptive_ =
+        model_.time.integrator == IntegratorKind::Explicit && sim.structure().hasHistory();
     std::optional<Checkpoint> resumed;
     if (opt_.restart)
       resumed = resume(sim);
+    reached_end_ = endReached(sim);
     const long stop = opt_.stop_at_step;
-    if (stop > 0 && (stop <= sim.steps() || stop > steps_)) // else the run never stops there
+    if (stop > 0 && (stop <= sim.steps() || (!adaptive_ && stop > steps_))) // never stops there
       throw Error("--stop-at-step " + std::to_string(stop) + " is not one of the steps " +
                       std::to_string(sim.steps() + 1) + " to " + std::to_string(steps_) +
                       " this run takes",
@@ -180,7 +186,10 @@ private:
                     "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance,"
                     "micro_kinetic" +
                         std::string(extra_energy_ ? ",spring_work,damping_work" : "") +
-                        std::string(sim.structure().hasPotential() ? "" : ",wrinkling_dissipation"),
+                        std::string(sim.structure().nonConservativeWrinkling()
+                                        ? ",wrinkling_dissipation"
+                                        : "") +
+                        std::string(sim.structure().hasHistory() ? ",inelastic_dissipation" : ""),
                     1);
     const auto names = sim.reactionNames();
     if (!names.empty()) {
@@ -203,19 +212,29 @@ private:
                  checkpointPath(opt_.out_dir).string() + ", step " + std::to_string(k) + ")");
   }
 
+  /// @return whether a step of an adaptive run (adaptive_) has reached t_end:
+  /// as the fixed-step explicit run, which covers t_end by ceil(t_end / dt - 1e-9) steps
+  bool endReached(const Simulation& sim) const {
+    return adaptive_ &&
+           sim.time() >= model_.time.t_end - 1e-9 * sim.integrator().timeStep();
+  }
+  /// @return whether step @p s is still to be taken
+  bool more(long s) const { return adaptive_ ? !reached_end_ : s <= steps_; }
+  /// @return whether step @p s is the last (for step sim.steps() of an adaptive run)
+  bool last(long s) const { return adaptive_ ? reached_end_ : s == steps_; }
   /// @return whether step @p s (of steps_) records the energies (the last always)
-  bool energyStep(long s) const { return s == steps_ || s % model_.output.energy_every == 0; }
+  bool energyStep(long s) const { return last(s) || s % model_.output.energy_every == 0; }
   /// @return whether step @p s (of steps_) writes the fields (the last always)
   bool fieldStep(long s) const {
     const int fe = model_.output.field_every;
-    return s == steps_ || (fe > 0 && s % fe == 0);
+    return last(s) || (fe > 0 && s % fe == 0);
   }
   /// @return the records up to step @p k (the initial one included) of an
   /// output written every @p every steps (0: the initial and the last only)
   /// and at the last step
   long recordsUpTo(long k, int every) const {
     const long regular = every > 0 ? k / every : 0;
-    return 1 + regular + (k == steps_ && !(every > 0 && k % every == 0) ? 1 : 0);
+    return 1 + regular + (last(k) && !(every > 0 && k % every == 0) ? 1 : 0);
   }
 
   /// The field times of checkpoint @p h, which must be those of the steps
@@ -226,6 +245,14 @@ private:
     const long count = model_.output.fields ? recordsUpTo(sim.steps(), fe) : 0;
     const Eigen::VectorXd& times = historyEntry(h, "run/field_times", count);
     const double dt = sim.integrator().timeStep();
+    if (adaptive_) { // the steps of the past are not kept: times in order, up to now
+      for (Eigen::Index j = 0; j < times.size(); ++j)
+        if (!(times[j] >= (j ? times[j - 1] : 0.0) && times[j] <= sim.time()))
+          throw Error("checkpoint entry 'run/field_times' value " + std::to_string(j) + " is " +
+                      core::formatExact(times[j]) + " s, not in order up to t = " +
+                      core::formatExact(sim.time()) + " s");
+      return {times.data(), times.data() + times.size()};
+    }
     for (Eigen::Index j = 0; j < times.size(); ++j) {
       const long s = j + 1 == count && fieldStep(sim.steps()) ? sim.steps() : j * fe;
       if (times[j] != static_cast<double>(s) * dt)
@@ -248,9 +275,10 @@ private:
     h["run/probe_peak"] = Eigen::Map<const Eigen::VectorXd>(
         probe_peak_.data(), static_cast<Eigen::Index>(probe_peak_.size()));
     const auto& e = last_energy_;
-    h["run/last_energy"] = (Eigen::VectorXd(10) << e.kinetic, e.micro_kinetic, e.strain,
+    h["run/last_energy"] = (Eigen::VectorXd(11) << e.kinetic, e.micro_kinetic, e.strain,
                             e.external_work, e.reaction_work, e.drag_work, e.spring_work,
-                            e.damping_work, e.balance, e.wrinkling_dissipation)
+                            e.damping_work, e.balance, e.wrinkling_dissipation,
+                            e.inelastic_dissipation)
                                .finished();
     h["run/csv_bytes"] = Eigen::Vector3d(static_cast<double>(probes_->bytes()),
                                          static_cast<double>(energy_->bytes()),
@@ -287,7 +315,8 @@ private:
                       "): restart with the case file and --set options of the interrupted run",
                   where);
     try {
-      sim.restore(c.data, steps_);
+      sim.restore(c.data, adaptive_ ? static_cast<long>(kMaxSteps) : steps_);
+      reached_end_ = endReached(sim); // the field and energy counts below need it
       const auto& h = c.data;
       for (const char* key : {"run/maxima", "run/peak_reaction", "run/probe_peak"})
         if (const auto it = h.find(key); it != h.end() && (it->second.array() < 0).any())
@@ -307,8 +336,8 @@ private:
       const auto np = static_cast<Eigen::Index>(model_.probes.size());
       const Eigen::VectorXd& pp = historyEntry(h, "run/probe_peak", np);
       probe_peak_.assign(pp.data(), pp.data() + np);
-      const Eigen::VectorXd& e = historyEntry(h, "run/last_energy", 10);
-      last_energy_ = Energy{e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9]};
+      const Eigen::VectorXd& e = historyEntry(h, "run/last_energy", 11);
+      last_energy_ = Energy{e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9], e[10]};
       constexpr long kMaxBytes = 1L << 53; // doubles hold every integer up to here
       for (int t = 0; t < 3; ++t)
         resumed_bytes_[t] =
@@ -414,11 +443,13 @@ private:
         row.push_back(e.spring_work);
         row.push_back(e.damping_work);
       }
-      if (!sim.structure().hasPotential())
+      if (sim.structure().nonConservativeWrinkling())
         row.push_back(e.wrinkling_dissipation);
+      if (sim.structure().hasHistory())
+        row.push_back(e.inelastic_dissipation);
       energy_->row(row);
       energy_scale_ = std::max({energy_scale_, std::abs(e.spring_work), std::abs(e.damping_work),
-                                std::abs(e.wrinkling_dissipation)});
+                                std::abs(e.wrinkling_dissipation), e.inelastic_dissipation});
     }
     if (fields && fields_)
       writeFields(sim);
@@ -455,8 +486,10 @@ private:
                    {"damping_work", e.damping_work},
                    {"max_abs_balance", max_balance_},
                    {"relative_balance", energy_scale_ > 0 ? max_balance_ / energy_scale_ : 0.0}};
-    if (!sim.structure().hasPotential())
+    if (sim.structure().nonConservativeWrinkling())
       s["energy"]["wrinkling_dissipation"] = e.wrinkling_dissipation;
+    if (sim.structure().hasHistory())
+      s["energy"]["inelastic_dissipation"] = e.inelastic_dissipation;
     nlohmann::json probes = nlohmann::json::object();
     for (size_t k = 0; k < model_.probes.size(); ++k) {
       const auto& p = model_.probes[k];
@@ -510,7 +543,9 @@ private:
   std::unique_ptr<FieldWriter> fields_;
   std::unique_ptr<CsvWriter> probes_, energy_, reactions_;
   std::vector<double> peak_reaction_, probe_peak_;
-  long steps_ = 0;                              // steps of the whole run
+  long steps_ = 0;                              // steps of the whole run (adaptive: estimate)
+  bool adaptive_ = false;    // the explicit step follows a law's state: the run ends at t_end
+  bool reached_end_ = false; // adaptive_: the current state is at t_end
   std::uintmax_t resumed_bytes_[3] = {0, 0, 0}; // a checkpoint's table sizes
   std::vector<double> resumed_field_times_;     // and field times
   Energy last_energy_;

@@ -22,8 +22,7 @@ std::unique_ptr<Structure> makeStructure(const Model& model) {
 /// The stable step of @p structure with the model's springs: a spring k on a
 /// node of lumped mass m adds k / m to omega^2 there, so the bound
 /// omega_max = 2 / dt_s of the structure becomes sqrt((2 / dt_s)^2 + k / m).
-double stableWithSprings(const Model& model, const Structure& structure) {
-  const double dt = structure.stableStep();
+double stableWithSprings(const Model& model, const Structure& structure, double dt) {
   if (model.springs.empty())
     return dt;
   const SparseMatrix& M = structure.mass();
@@ -54,7 +53,7 @@ double explicitStep(const TimeSettings& ts, double stable) {
 Simulation::Simulation(const Model& model)
     : model_(model), structure_(makeStructure(model)), loads_(model),
       cons_(model.constraints, model.numDofs()) {
-  stable_dt_ = stableWithSprings(model, *structure_);
+  stable_dt_ = stableWithSprings(model, *structure_, structure_->stableStep());
   if (model.time.integrator == IntegratorKind::Explicit)
     integrator_ = std::make_unique<CentralDifference>(model, *structure_, loads_, cons_,
                                                       explicitStep(model.time, stable_dt_),
@@ -66,7 +65,9 @@ Simulation::Simulation(const Model& model)
   state_.u = model.u0.size() == ndof ? model.u0 : Eigen::VectorXd::Zero(ndof);
   state_.v = model.v0.size() == ndof ? model.v0 : Eigen::VectorXd::Zero(ndof);
   cons_.prescribe(0.0, state_.v);
+  structure_->beginStep(0.0, 0.0); // a law meets the initial displacements instantaneously
   integrator_->init(state_);
+  structure_->commitStep();
   u0_ = structure_->strainEnergy(state_.u);
   const Energy e = energy();
   e0_ = e.kinetic + e.strain;
@@ -76,11 +77,30 @@ Simulation::Simulation(const Model& model)
 Simulation::~Simulation() = default;
 
 void Simulation::step() {
+  structure_->beginStep(integrator_->timeAt(state_.step + 1), integrator_->timeStep());
   integrator_->step(state_);
+  structure_->commitStep();
   works_.add(integrator_->increment(), integrator_->previousForces(), integrator_->forces(), cons_,
              loads_.hasExternal(), loads_.hasDrag());
   if (structure_->hasFailureThresholds())
     structure_->checkFailure(state_.t, state_.u, failure_);
+  if (structure_->hasHistory() && state_.step % kStableStepEvery == 0)
+    adaptStep();
+}
+
+void Simulation::adaptStep() {
+  if (model_.time.integrator != IntegratorKind::Explicit)
+    return;
+  stable_dt_ = stableWithSprings(model_, *structure_, structure_->currentStableStep());
+  double target = model_.time.safety * stable_dt_;
+  if (model_.time.dt > 0) // a given step is the largest the run takes
+    target = std::min(target, model_.time.dt);
+  const double dt = integrator_->timeStep();
+  // Shrink at once; grow back only by a margin, so that the step does not flutter.
+  if (target < dt || target > kStepGrowth * dt) {
+    integrator_->setTimeStep(target, state_);
+    loads_.setStep(target);
+  }
 }
 
 namespace {
@@ -110,6 +130,7 @@ void Simulation::save(History& h) const {
   integrator_->saveHistory(own);
   for (auto& [key, value] : own)
     h[kIntegrator + key] = std::move(value);
+  structure_->saveHistory(h);
 }
 
 namespace {
@@ -156,28 +177,38 @@ void Simulation::restoreFailure(const History& h) {
 
 void Simulation::restore(const History& h, long last_step) {
   const double dt = historyEntry(h, "integrator/dt", 1)[0];
-  if (dt != integrator_->timeStep())
+  // A run whose step adapts to its laws' state (hasHistory) may have changed it.
+  if (dt != integrator_->timeStep() && !structure_->hasHistory())
     throw Error("checkpoint was written with the time step " + core::formatExact(dt) +
                 " s, this run's is " + core::formatExact(integrator_->timeStep()) +
                 " s (another case or another build of the program)");
+  restoreIntegrator(h);
+  if (dt != integrator_->timeStep())
+    throw Error("checkpoint entries 'integrator/dt' and 'integrator/step' disagree");
+  loads_.setStep(dt);
   const Eigen::Index n = model_.numDofs();
   state_.step = historyInteger(h, "state/time", 2, 1, 0, last_step);
   state_.t = historyEntry(h, "state/time", 2)[0];
-  // The schemes compute t_n as n * dt (no accumulated round-off): exactly.
-  if (state_.t != static_cast<double>(state_.step) * dt)
+  // The schemes compute t_n from the step count (no accumulated round-off): exactly.
+  if (state_.t != integrator_->timeAt(state_.step))
     throw Error("checkpoint entry 'state/time' holds t = " + core::formatExact(state_.t) +
-                " s at step " + std::to_string(state_.step) + ", not step * dt = " +
-                core::formatExact(static_cast<double>(state_.step) * dt) + " s");
+                " s at step " + std::to_string(state_.step) + ", not the scheme's " +
+                core::formatExact(integrator_->timeAt(state_.step)) + " s");
   state_.u = historyEntry(h, "state/u", n);
   state_.v = historyEntry(h, "state/v", n);
   state_.a = historyEntry(h, "state/a", n);
   const Eigen::VectorXd& w = historyEntry(h, "works", 6);
   works_ = Works{w[0], w[1], w[2], w[3], w[4], w[5]};
   restoreFailure(h);
+  structure_->restoreHistory(h);
+}
+
+void Simulation::restoreIntegrator(const History& h) {
   History own;
   const std::string prefix = kIntegrator;
   for (auto it = h.lower_bound(prefix); it != h.end() && it->first.rfind(prefix, 0) == 0; ++it)
-    own[it->first.substr(prefix.size())] = it->second;
+    if (it->first != "integrator/dt")
+      own[it->first.substr(prefix.size())] = it->second;
   try {
     integrator_->restoreHistory(own);
   } catch (const Error& e) { // name the entries as the file does: "integrator/<key>"
@@ -195,8 +226,13 @@ Energy Simulation::energy() const {
   // U is the stored energy; without a potential (tension-only fabric) the
   // internal work it does not hold is the wrinkling dissipation.
   const double U = structure_->strainEnergy(state_.u);
-  const double D = structure_->hasPotential() ? 0.0 : works_.internal - (U - u0_);
-  Energy e = works_.energy(T, U, e0_, D);
+  // A law's dissipation comes from its own history; the tension-only
+  // projection of elastic sections dissipates (or makes) what the internal
+  // work leaves over.
+  const double D_in = structure_->inelasticDissipation();
+  const double D_w =
+      structure_->nonConservativeWrinkling() ? works_.internal - (U - u0_) - D_in : 0.0;
+  Energy e = works_.energy(T, U, e0_, D_w, D_in);
   if (const SparseMatrix* MD = structure_->microMass()) {
     multiply(*MD, state_.v, y);
     e.micro_kinetic = 0.5 * state_.v.dot(y);

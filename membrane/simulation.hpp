@@ -9,7 +9,10 @@
 /// integrators/central_difference.hpp for the explicit one). The structure
 /// is the model's kind (LinearMembrane or LargeDeflection); the explicit
 /// step is time.dt when given (it must not exceed the stable step), else
-/// time.safety x the structure's stable step.
+/// time.safety x the structure's stable step. When a section's law carries
+/// history (structure.hpp), the step follows the law's instantaneous
+/// stiffness at the current state: every kStableStepEvery steps it becomes
+/// time.safety x the current stable step (at most time.dt when given).
 
 #include "membrane/integrators/energy.hpp"
 #include "membrane/integrators/time_integrator.hpp"
@@ -98,7 +101,18 @@ public:
   /// differs from the saved one (another case or another build).
   void restore(const History& h, long last_step);
 
+  /// Steps between two re-evaluations of the stable step of a structure whose
+  /// laws carry history (the step follows their instantaneous stiffness).
+  static constexpr long kStableStepEvery = 10;
+  /// The step grows back only when the stable one exceeds it by this factor.
+  static constexpr double kStepGrowth = 1.2;
+
 private:
+  /// The explicit step from the structure's current stable step: safety x
+  /// it (at most time.dt when given), shrunk at once, grown by kStepGrowth.
+  void adaptStep();
+  /// restore()'s part of the integrator: its own entries "integrator/<key>".
+  void restoreIntegrator(const History& h);
   /// restore()'s failure record: element indices, criteria and times checked.
   void restoreFailure(const History& h);
   const Model& model_;

@@ -1,6 +1,7 @@
 #include "membrane/integrators/central_difference.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace lamina::membrane {
@@ -104,19 +105,34 @@ void CentralDifference::init(State& s) {
   du_ = Eigen::VectorXd::Zero(structure_.numDofs());
 }
 
+void CentralDifference::setTimeStep(double dt, const State& s) {
+  LAMINA_CHECK(dt > 0 && std::isfinite(dt), "explicit time step must be > 0");
+  dt_ = dt;
+  t_base_ = s.t;
+  step_base_ = s.step;
+}
+
 void CentralDifference::saveHistory(History& h) const {
   saveForces("forces/", cur_, h);
+  h["step"] = Eigen::Vector3d(dt_, t_base_, static_cast<double>(step_base_));
 }
 
 void CentralDifference::restoreHistory(const History& h) {
   restoreForces("forces/", h, cur_); // every force of init(), with its size
   prev_ = cur_;
+  const Eigen::VectorXd& st = historyEntry(h, "step", 3);
+  if (!(st[0] > 0 && std::isfinite(st[0])) || !(st[1] >= 0 && std::isfinite(st[1])))
+    throw Error("checkpoint entry 'step' holds the step " + std::to_string(st[0]) +
+                " s from t = " + std::to_string(st[1]) + " s (need a step > 0 from t >= 0)");
+  dt_ = st[0];
+  t_base_ = st[1];
+  step_base_ = historyInteger(h, "step", 3, 2, 0, std::numeric_limits<long>::max() / 2);
 }
 
 void CentralDifference::step(State& s) {
   // The vector work is two threaded passes around the force evaluation.
-  const double t1 = static_cast<double>(s.step + 1) * dt_;
-  const double th = (static_cast<double>(s.step) + 0.5) * dt_;
+  const double t1 = timeAt(s.step + 1);
+  const double th = t_base_ + (static_cast<double>(s.step - step_base_) + 0.5) * dt_;
   const int n = structure_.numDofs();
   const double h = 0.5 * dt_, dt = dt_;
   vh_.resize(n);

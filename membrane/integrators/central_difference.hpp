@@ -3,7 +3,8 @@
 /// @brief Explicit central differences with a lumped mass, for any Structure
 /// (the large-deflection fabric, or the linear model).
 ///
-/// One step (dt fixed, t_n = n dt), with m the lumped (row-sum) mass:
+/// One step (t_n = n dt; after a change of step at (t_k, k), t_n = t_k + (n - k) dt),
+/// with m the lumped (row-sum) mass:
 ///   v_{n+1/2} = v_n + dt/2 a_n      (prescribed velocity at t_n + dt/2 on constrained DOFs)
 ///   u_{n+1}   = u_n + dt v_{n+1/2}
 ///   m a_{n+1} = F_ext(t_{n+1}, u_{n+1}) + F_drag(u_{n+1}, v_{n+1/2}) + F_s(u_{n+1})
@@ -34,12 +35,17 @@ public:
   void init(State& s) override;
   void step(State& s) override;
   double timeStep() const override { return dt_; }
+  double timeAt(long step) const override {
+    return t_base_ + static_cast<double>(step - step_base_) * dt_;
+  }
+  /// The step is self-starting (v_n, a_n carry everything): any dt from here on.
+  void setTimeStep(double dt, const State& s) override;
   const StateForces& forces() const override { return cur_; }
   const StateForces& previousForces() const override { return prev_; }
   const Eigen::VectorXd& increment() const override { return du_; }
   std::string name() const override { return "explicit"; }
-  /// Saves the forces at t_n (the half-step velocity and the step itself
-  /// are recomputed from the State and the model).
+  /// Saves the forces at t_n and the step "step" = [dt, t_k, k] (the
+  /// half-step velocity is recomputed from the State).
   void saveHistory(History& h) const override;
   void restoreHistory(const History& h) override;
 
@@ -53,6 +59,8 @@ private:
   const LoadSet& loads_;
   const ConstrainedDofs& cons_;
   double dt_, damping_;
+  double t_base_ = 0; // time and step of the last change of step (0, 0: none)
+  long step_base_ = 0;
   Eigen::VectorXd m_, minv_; // lumped mass and its inverse (0 on constrained DOFs)
   std::vector<double> rigid_mass_;
   StateForces cur_, prev_;

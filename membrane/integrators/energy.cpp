@@ -20,7 +20,7 @@ void Works::add(const Eigen::VectorXd& du, const StateForces& f0, const StateFor
   }
 }
 
-Energy Works::energy(double T, double U, double e0, double D) const {
+Energy Works::energy(double T, double U, double e0, double D, double D_in) const {
   Energy e;
   e.kinetic = T;
   e.strain = U;
@@ -30,7 +30,8 @@ Energy Works::energy(double T, double U, double e0, double D) const {
   e.spring_work = spring;
   e.damping_work = damping;
   e.wrinkling_dissipation = D;
-  e.balance = T + U + D - e0 - external - reaction - drag - spring - damping;
+  e.inelastic_dissipation = D_in;
+  e.balance = T + U + D + D_in - e0 - external - reaction - drag - spring - damping;
   return e;
 }
 

@@ -38,24 +38,10 @@ void restoreForces(const std::string& prefix, const History& h, StateForces& f) 
   });
 }
 
-const Eigen::VectorXd& historyEntry(const History& h, const std::string& key, Eigen::Index size) {
-  const auto it = h.find(key);
-  if (it == h.end())
-    throw Error("checkpoint has no entry '" + key + "'");
-  if (size >= 0 && it->second.size() != size)
-    throw Error("checkpoint entry '" + key + "' has " + std::to_string(it->second.size()) +
-                " values, this run needs " + std::to_string(size));
-  return it->second;
-}
-
-long historyInteger(const History& h, const std::string& key, Eigen::Index size, Eigen::Index i,
-                    long lo, long hi) {
-  const double x = historyEntry(h, key, size)[i];
-  if (!(x >= static_cast<double>(lo) && x <= static_cast<double>(hi)) || x != std::floor(x))
-    throw Error("checkpoint entry '" + key + "' value " + std::to_string(i) + " is " +
-                core::formatShort(x) + ", not an integer in [" + std::to_string(lo) + ", " +
-                std::to_string(hi) + "]");
-  return static_cast<long>(x);
+void TimeIntegrator::setTimeStep(double dt, const State& s) {
+  (void)dt;
+  (void)s;
+  throw Error("the " + name() + " scheme has a fixed time step");
 }
 
 void commitStep(State& s, double t1, Eigen::VectorXd& u1, Eigen::VectorXd& v1,

@@ -12,11 +12,12 @@
 ///   prescribed velocities already set); on exit s.a is the acceleration of
 ///   the equation of motion at s.t (zero at constrained DOFs whose velocity
 ///   is constant) and forces() holds the forces at s.
-/// - step(s): on entry s is the state at t_n = s.step * dt (as left by init
-///   or by the previous step); on exit s is the state at
-///   t_{n+1} = (s.step + 1) * dt with s.step incremented, forces() holds the
+/// - step(s): on entry s is the state at t_n = timeAt(s.step) (as left by
+///   init or by the previous step); on exit s is the state at
+///   t_{n+1} = timeAt(s.step + 1) with s.step incremented, forces() holds the
 ///   forces at t_{n+1}, previousForces() those at t_n, increment() is
-///   u_{n+1} - u_n. Times are step * dt (no accumulated round-off). On a
+///   u_{n+1} - u_n. Times are step * dt (no accumulated round-off); a scheme
+///   whose step changed (setTimeStep) counts from the state of the change. On a
 ///   non-finite result s is left unchanged and lamina::DivergenceError is
 ///   thrown naming the time and the node.
 /// The works of the forces and the energy balance are kept outside the
@@ -28,6 +29,7 @@
 /// model puts it back, after which step() continues bit for bit as the
 /// scheme that saved it would have.
 
+#include "membrane/model/history.hpp"
 #include "membrane/model/mesh.hpp"
 
 #include <Eigen/Dense>
@@ -63,10 +65,6 @@ struct SolverStats {
   int last_iterations = 0; ///< iterations of the last step
 };
 
-/// Named arrays of doubles: what a scheme (or a run) saves in a checkpoint
-/// besides the State. Keys are '/'-separated paths ("forces/external").
-using History = std::map<std::string, Eigen::VectorXd>;
-
 /// Saves the non-empty members of @p f under "<prefix>external", "<prefix>drag", ...
 void saveForces(const std::string& prefix, const StateForces& f, History& h);
 /// Restores what saveForces() wrote into @p f, which holds the forces of
@@ -74,16 +72,6 @@ void saveForces(const std::string& prefix, const StateForces& f, History& h);
 /// the members that are non-empty there, with their sizes (a checkpoint is
 /// input: a missing, extra or mis-sized entry throws lamina::Error naming it).
 void restoreForces(const std::string& prefix, const History& h, StateForces& f);
-/// @return entry @p key of @p h, which must exist and (when @p size >= 0)
-/// have @p size values; throws lamina::Error naming the key otherwise
-const Eigen::VectorXd& historyEntry(const History& h, const std::string& key,
-                                    Eigen::Index size = -1);
-/// @return value @p i of entry @p key of @p h (which must hold @p size
-/// values) as an integer, which must be one (no fraction) in [@p lo, @p hi];
-/// throws lamina::Error naming the key and the range otherwise
-long historyInteger(const History& h, const std::string& key, Eigen::Index size, Eigen::Index i,
-                    long lo, long hi);
-
 /// A time-stepping scheme (see the file comment for the contract).
 class TimeIntegrator {
 public:
@@ -92,8 +80,14 @@ public:
   virtual void init(State& s) = 0;
   /// Advances @p s by one step of timeStep().
   virtual void step(State& s) = 0;
-  /// @return the fixed step of the scheme (s)
+  /// @return the step of the scheme (s): the one the next step() takes
   virtual double timeStep() const = 0;
+  /// @return the time of step number @p step (s): step * timeStep() for a
+  /// scheme whose step never changed (no accumulated round-off)
+  virtual double timeAt(long step) const { return static_cast<double>(step) * timeStep(); }
+  /// Changes the step from the state @p s on (times after it are s.t + k dt).
+  /// Throws lamina::Error for a scheme with a fixed step.
+  virtual void setTimeStep(double dt, const State& s);
   /// @return the forces at the current state
   virtual const StateForces& forces() const = 0;
   /// @return the forces at the start of the last step

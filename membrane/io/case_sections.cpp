@@ -1,5 +1,6 @@
 /// @file case_sections.cpp
-/// @brief [[section]] of a case: materials by name, inline, or plies.
+/// @brief [[section]] of a case: a constitutive law by material name, inline
+/// (`law` and its keys, or the shortcuts E and C), or plies.
 
 #include "membrane/io/case_builders.hpp"
 
@@ -8,11 +9,13 @@
 #include "core/names.hpp"
 #include "core/toml_reader.hpp"
 #include "materials/catalog.hpp"
+#include "materials/law_spec.hpp"
 #include "materials/layup.hpp"
 #include "materials/library.hpp"
 #include "materials/material_source.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -22,22 +25,139 @@ namespace lamina::membrane::case_io {
 
 namespace {
 
-/// Lazily opened material sources (a case with inline materials needs neither).
-/// Looks a material up for the case (library, then catalog) and blames a
-/// miss on the case file's key.
-materials::Material lookupMaterial(materials::MaterialSource& source, const std::string& name,
-                                   const core::TableReader& r, const std::string& key) {
+/// The large-deflection keys of a [[section]].
+constexpr std::array<const char*, 5> kFabricKeys = {"material_axis", "prestress", "tension_only",
+                                                   "failure_strain", "failure_stress"};
+/// The keys of a [[section]] with an inline law that are not its law's
+/// (with kFabricKeys; the law's own keys are materials::readLawSpec's).
+constexpr std::array<const char*, 5> kOwnKeys = {"region", "density", "thickness", "dispersion",
+                                                "micro_inertia"};
+
+/// Runs @p f, a look-up in the material sources; an error without a file of
+/// its own (an unknown name, a reduced-order entry's side file) is blamed on
+/// @p key of @p r, while a broken library or catalog file keeps its file and line.
+template <class F>
+auto blamed(const core::TableReader& r, const std::string& key, F&& f) -> decltype(f()) {
   try {
-    materials::Material m = source.get(name);
-    if (m.kind == materials::kReducedOrderKind)
-      r.fail(key, "'" + name + "' is a reduced-order cell, a nonlinear law: membrane sections "
-                  "take elastic materials (its C alone would drop the law)");
-    return m;
+    return f();
   } catch (const Error& e) {
     if (!e.context().file.empty())
-      throw; // a broken library or catalog file: its own file and line
+      throw;
     r.fail(key, e.message());
   }
+}
+
+/// @return "the section of region 'NAME'" (or of every region left) for messages
+std::string sectionText(const core::TableReader& r) {
+  return r.has("region") ? "the section of region '" + r.getString("region") + "'"
+                         : "the section of every region without one of its own";
+}
+
+/// `material = "NAME"`: the law of the library or catalog entry
+/// (MaterialSource::law: a reduced-order entry is its ReducedOrderLaw, a
+/// catalog entry its own law), its density and dispersion.
+/// @return the entry's thickness, if it has one (the section's default)
+std::optional<double> readNamedMaterial(const core::TableReader& r,
+                                        materials::MaterialSource& source, Section& s) {
+  const std::string name = r.getString("material");
+  const materials::Material m = blamed(r, "material", [&] { return source.get(name); });
+  s.law = blamed(r, "material", [&] { return source.law(name); });
+  s.D = s.law->elasticStiffness(1.0).matrix(); // a linear law: the entry's C, bit for bit
+  s.density = m.density;
+  if (m.dispersion)
+    s.dispersion = *m.dispersion;
+  s.material = name + " (" + materials::toString(s.law->kind()) + ")";
+  return m.thickness;
+}
+
+/// Refuses a key of @p r that is neither a section key nor read by the law
+/// (`law = "isotropic"` with C, a gvbo table on an elastic law), naming the
+/// key and the law @p law. @p read reads the law from a reader; it is run
+/// again on a reader of its own, which records the keys the law takes.
+template <class Read>
+void checkLawKeys(const core::TableReader& r, const Read& read, const std::string& law) {
+  const core::TableReader own(r.tomlTable(), r.file());
+  for (const char* k : kOwnKeys)
+    own.raw(k);
+  for (const char* k : kFabricKeys)
+    own.raw(k);
+  read(own);
+  try {
+    own.finish();
+  } catch (const Error& e) {
+    const std::string& key = e.context().key;
+    if (key.find('.') == std::string::npos) // a key of the section, not one inside a law's table
+      r.fail(key, "not a key of law \"" + law + "\" (nor of a section)");
+  }
+}
+
+/// An inline law: `law = "NAME"` and that law's keys (materials::readLawSpec,
+/// as cell phases and catalog entries), or the shortcuts E (with nu: law
+/// "isotropic") and C (law "anisotropic"); `density` is required.
+void readInlineLaw(const core::TableReader& r, Section& s) {
+  const auto read = [](const core::TableReader& t) {
+    if (t.has("law"))
+      return materials::readLawSpec(t);
+    return materials::readLawConstants(t, t.has("E") ? materials::LawKind::Isotropic
+                                                     : materials::LawKind::Anisotropic);
+  };
+  const materials::LawSpec spec = read(r);
+  checkLawKeys(r, read, materials::toString(spec.kind));
+  s.law = spec.make();
+  s.D = s.law->elasticStiffness(1.0).matrix(); // a linear law: spec.C, bit for bit
+  s.density = r.getDouble("density");
+  s.material = std::string("inline ") + materials::toString(spec.kind);
+}
+
+/// `plies`: a linear laminate of elastic plies (materials::makeLayup); a ply
+/// of a nonlinear law (GVBO, a reduced-order cell) is refused.
+/// @return the layup's thickness (the section's default)
+std::optional<double> readLayup(const core::TableReader& r, materials::MaterialSource& source,
+                                Section& s) {
+  const auto texts = r.getStringArray("plies");
+  std::vector<materials::Ply> plies;
+  for (const auto& t : texts)
+    plies.push_back(blamed(r, "plies", [&] { return materials::parsePly(t); }));
+  const auto elasticPly = [&](const std::string& name) {
+    const materials::Material m = blamed(r, "plies", [&] { return source.get(name); });
+    // a reduced-order entry is refused by its kind, before its side file is read
+    const bool reduced = m.kind == materials::kReducedOrderKind;
+    const materials::LawPtr law =
+        reduced ? nullptr : blamed(r, "plies", [&] { return source.law(name); });
+    if (reduced || !law->isLinear())
+      r.fail("plies", "ply material '" + name + "' has a nonlinear law (" +
+                          materials::toString(reduced ? materials::LawKind::ReducedOrder
+                                                      : law->kind()) +
+                          "): a layup is a linear laminate of elastic plies; give it as a "
+                          "section's material instead");
+    return m;
+  };
+  const materials::Material m =
+      blamed(r, "plies", [&] { return materials::makeLayup("case-layup", plies, elasticPly); });
+  s.law = std::make_shared<materials::LinearElasticLaw>(materials::LawKind::Anisotropic, m.C);
+  s.D = m.C.matrix();
+  s.density = m.density;
+  if (m.dispersion)
+    s.dispersion = *m.dispersion;
+  s.material = "layup of " + std::to_string(plies.size()) + " plies (anisotropic)";
+  return m.thickness;
+}
+
+/// A nonlinear law needs the large-deflection model and carries no
+/// micro-inertia; the large-deflection model carries none either.
+void checkLawFitsModel(const core::TableReader& r, ModelKind kind, const Section& s) {
+  if (!s.isLinear()) {
+    const std::string what = sectionText(r) + " has the nonlinear law " + s.material;
+    if (kind == ModelKind::Linear)
+      r.failHere(what + ", which the linear (paper's) model cannot carry: set model = "
+                        "\"large_deflection\"");
+    if (s.hasMicroInertia())
+      r.failHere(what + " and micro-inertia (a dispersion), which a nonlinear law does not "
+                        "carry: set micro_inertia = false");
+  }
+  if (kind == ModelKind::LargeDeflection && s.hasMicroInertia())
+    r.failHere("the material has micro-inertia (a dispersion), which only the linear model "
+               "carries: set micro_inertia = false for the large-deflection model");
 }
 
 /// Micro-inertia keys of a section: an inline `dispersion` (zeta^2 D, 6x6,
@@ -46,7 +166,7 @@ materials::Material lookupMaterial(materials::MaterialSource& source, const std:
 void readMicroInertia(const core::TableReader& r, bool named, Section& s) {
   if (r.has("dispersion")) {
     if (named)
-      r.fail("dispersion", "only with an inline material (E or C): a named material brings its "
+      r.fail("dispersion", "only with an inline material (law, E or C): a named material brings its "
                            "own dispersion from the library");
     const auto d = r.getMatrix("dispersion");
     bool ok = d.size() == 6;
@@ -70,8 +190,7 @@ void readMicroInertia(const core::TableReader& r, bool named, Section& s) {
 /// The large-deflection keys of a [[section]] (material axis, pre-stress,
 /// tension_only, failure thresholds); an error under the linear model.
 void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
-  for (const char* key :
-       {"material_axis", "prestress", "tension_only", "failure_strain", "failure_stress"})
+  for (const char* key : kFabricKeys)
     if (kind == ModelKind::Linear && r.has(key))
       r.fail(key, "needs model = \"large_deflection\"");
   if (kind == ModelKind::Linear)
@@ -105,66 +224,24 @@ void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
     r.fail("failure_stress", "must be > 0");
 }
 
-/// Reads one [[section]]: material by name, inline isotropic/anisotropic, or plies.
-Section readSection(const core::TableReader& r, materials::MaterialSource& res, ModelKind kind) {
+/// Reads one [[section]]: its law by material name, inline, or plies.
+Section readSection(const core::TableReader& r, materials::MaterialSource& source,
+                    ModelKind kind) {
+  const bool by_name = r.has("material"), layup = r.has("plies");
+  const int inline_law = r.has("law") ? 1 : int(r.has("E")) + int(r.has("C"));
+  if (by_name + layup + inline_law != 1)
+    r.failHere("give exactly one of material, law (with its keys and density), E (with nu and "
+               "density), C (with density), plies");
   Section s;
   std::optional<double> default_thickness;
-  const bool by_name = r.has("material"), iso = r.has("E"), aniso = r.has("C"),
-             layup = r.has("plies");
-  if (by_name + iso + aniso + layup != 1)
-    r.failHere("give exactly one of material, E (with nu, density), C (with density), plies");
-  if (by_name) {
-    s.material = r.getString("material");
-    const auto m = lookupMaterial(res, s.material, r, "material");
-    s.D = m.C.matrix();
-    s.density = m.density;
-    if (m.dispersion)
-      s.dispersion = *m.dispersion;
-    default_thickness = m.thickness;
-  } else if (iso) {
-    const double E = r.getDouble("E"), nu = r.getDouble("nu");
-    if (!(E > 0))
-      r.fail("E", "must be > 0");
-    if (!(nu > -1 && nu < 0.5))
-      r.fail("nu", "must be in (-1, 0.5)");
-    s.D = materials::Stiffness::isotropic(E, nu).matrix();
-    s.density = r.getDouble("density");
-    s.material = "isotropic E=" + std::to_string(E) + " nu=" + std::to_string(nu);
-  } else if (aniso) {
-    s.D = materials::readMatrix6(r, "C");
-    s.density = r.getDouble("density");
-    s.material = "inline C";
-  } else {
-    const auto texts = r.getStringArray("plies");
-    std::vector<materials::Ply> plies;
-    for (const auto& t : texts) {
-      try {
-        plies.push_back(materials::parsePly(t));
-      } catch (const Error& e) {
-        r.fail("plies", e.message());
-      }
-    }
-    materials::Material m;
-    try {
-      m = materials::makeLayup("case-layup", plies, [&](const std::string& n) {
-        return lookupMaterial(res, n, r, "plies");
-      });
-    } catch (const Error& e) {
-      if (!e.context().file.empty())
-        throw;
-      r.fail("plies", e.message());
-    }
-    s.D = m.C.matrix();
-    s.density = m.density;
-    if (m.dispersion)
-      s.dispersion = *m.dispersion;
-    default_thickness = m.thickness;
-    s.material = "layup of " + std::to_string(plies.size()) + " plies";
-  }
+  if (by_name)
+    default_thickness = readNamedMaterial(r, source, s);
+  else if (layup)
+    default_thickness = readLayup(r, source, s);
+  else
+    readInlineLaw(r, s);
   readMicroInertia(r, by_name || layup, s);
-  if (kind == ModelKind::LargeDeflection && s.hasMicroInertia())
-    r.failHere("the material has micro-inertia (a dispersion), which only the linear model "
-               "carries: set micro_inertia = false for the large-deflection model");
+  checkLawFitsModel(r, kind, s);
   if (r.has("thickness") || !default_thickness) {
     s.thickness = r.getDouble("thickness");
     if (!(s.thickness > 0))

@@ -1,10 +1,15 @@
 #include "membrane/model/large_deflection.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
+#include "core/parallel.hpp"
+#include "membrane/model/law_point.hpp"
 #include "membrane/model/stable_step.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace lamina::membrane {
 
@@ -21,7 +26,10 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
     cps_.push_back(planeStressStiffness(s.D));
     cps_inv_.push_back(cps_.back().inverse());
     s0_.push_back(s.prestress / s.thickness);
+    LAMINA_CHECK(s.isLinear() || s.prestress.isZero(), "section '", s.name, "' (", s.material,
+                 "): a pre-stress needs a linear elastic law (a nonlinear law starts unstressed)");
     any_tension_only_ = any_tension_only_ || s.tension_only;
+    any_linear_tension_only_ = any_linear_tension_only_ || (s.tension_only && s.isLinear());
     any_threshold_ =
         any_threshold_ || std::isfinite(s.failure_strain) || std::isfinite(s.failure_stress);
   }
@@ -51,7 +59,8 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
       p.dN[2 * a] = el.dN[a].x();
       p.dN[2 * a + 1] = el.dN[a].y();
     }
-    p.region = model.sections[r].tension_only ? -1 - r : r;
+    // The general path: tension-only or a nonlinear law.
+    p.region = model.sections[r].tension_only || !model.sections[r].isLinear() ? -1 - r : r;
     p.hA = model.sections[r].thickness * el.area0;
   }
   x0_.resize(3 * static_cast<size_t>(n));
@@ -72,6 +81,12 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
     for (int c = 0; c < 3; ++c)
       M_.insert(3 * i + c, 3 * i + c) = m[i];
   M_.makeCompressed();
+  min_length_.assign(model.sections.size(), std::numeric_limits<double>::infinity());
+  for (int e = 0; e < ne; ++e) {
+    double& l = min_length_[static_cast<size_t>(mesh.region_of[e])];
+    l = std::min(l, elementLength(mesh, e));
+  }
+  initHistory();
   setup_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -81,12 +96,113 @@ FabricStress LargeDeflection::stress(int e, const Eigen::VectorXd& u) const {
   std::array<Eigen::Vector3d, 3> x;
   for (int a = 0; a < 3; ++a)
     x[a] = model_.mesh.point(el.nodes[a]) + u.segment<3>(3 * el.nodes[a]);
+  if (const double* b = history(e)) {
+    FabricStress st = fabricStress(el, x, cps_[r], s0_[r], false); // F and E
+    st.S = lawPointPk2(st.F, b);
+    st.state = static_cast<Wrinkle>(static_cast<int>(b[LawPoint::kWrinkleState]));
+    return st;
+  }
   return fabricStress(el, x, cps_[r], s0_[r], model_.sections[r].tension_only);
+}
+
+void LargeDeflection::initHistory() {
+  const Mesh& mesh = model_.mesh;
+  const int ne = mesh.numElements();
+  long size = 0;
+  std::vector<long> offset(ne, -1);
+  for (int e = 0; e < ne; ++e) {
+    const Section& s = model_.sections[mesh.region_of[e]];
+    if (s.isLinear())
+      continue;
+    offset[e] = size;
+    size += LawPoint::size(*s.law);
+  }
+  if (size == 0)
+    return;
+  history_offset_ = std::move(offset);
+  history_.assign(static_cast<size_t>(size), 0.0);
+  for (int e = 0; e < ne; ++e)
+    if (history_offset_[e] >= 0)
+      initLawPoint(*model_.sections[mesh.region_of[e]].law, elements_[e].frame.leftCols<2>(),
+                   history_.data() + history_offset_[e]);
+  trial_ = history_;
+}
+
+void LargeDeflection::lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F,
+                                      double* out) const {
+  const int r = model_.mesh.region_of[e];
+  const Section& s = model_.sections[r];
+  const long o = history_offset_[e];
+  Eigen::Vector3d S;
+  try {
+    S = stepLawPoint(*s.law, F, s.tension_only, step_dt_, history_.data() + o, trial_.data() + o);
+  } catch (const Error& err) {
+    throw DivergenceError("element " + std::to_string(e) + " (section '" + s.name + "', " +
+                          s.material + ") at t = " + core::formatShort(step_t1_) +
+                          " s: " + err.message());
+  }
+  Eigen::Matrix2d Sm;
+  Sm << S[0], S[2], S[2], S[1];
+  const Eigen::Matrix<double, 3, 2> P = (s.thickness * elements_[e].area0) * (F * Sm);
+  for (int a = 0; a < 3; ++a)
+    Eigen::Map<Eigen::Vector3d>(out + 3 * a) = P * elements_[e].dN[a];
+}
+
+Eigen::Vector2d LargeDeflection::cauchyPrincipal(int e, const FabricStress& st) const {
+  if (const double* b = history(e)) // the law's Cauchy stress (its thickness follows it)
+    return principal2(b[LawPoint::kSigma], b[LawPoint::kSigma + 1], b[LawPoint::kSigma + 2]);
+  return principalCauchy(st);
+}
+
+double LargeDeflection::inelasticDissipation() const {
+  double D = 0;
+  const int ne = model_.mesh.numElements();
+  for (int e = 0; e < ne; ++e)
+    if (const double* b = history(e))
+      D += model_.sections[model_.mesh.region_of[e]].thickness * elements_[e].area0 *
+           b[LawPoint::kDissipation];
+  return D;
+}
+
+namespace {
+constexpr const char* kHistoryKey = "structure/law_history";
+} // namespace
+
+void LargeDeflection::saveHistory(History& h) const {
+  if (hasHistory())
+    h[kHistoryKey] = Eigen::Map<const Eigen::VectorXd>(history_.data(),
+                                                       static_cast<Eigen::Index>(history_.size()));
+}
+
+void LargeDeflection::restoreHistory(const History& h) {
+  if (!hasHistory()) {
+    if (h.count(kHistoryKey))
+      throw Error(std::string("checkpoint has an entry '") + kHistoryKey +
+                  "' but no section of this case has a nonlinear law");
+    return;
+  }
+  const Eigen::VectorXd& v =
+      historyEntry(h, kHistoryKey, static_cast<Eigen::Index>(history_.size()));
+  for (int e = 0; e < model_.mesh.numElements(); ++e) {
+    const long o = history_offset_[e];
+    if (o < 0)
+      continue;
+    const double lambda3 = v[o + LawPoint::kLambda3], J = v[o + LawPoint::kJ],
+                 w = v[o + LawPoint::kWrinkleState];
+    if (!(lambda3 > 0 && J > 0 && (w == 0 || w == 1 || w == 2)))
+      throw Error(std::string("checkpoint entry '") + kHistoryKey + "': element " +
+                  std::to_string(e) + " has a thickness stretch " + core::formatShort(lambda3) +
+                  ", J " + core::formatShort(J) + " and wrinkling state " + core::formatShort(w) +
+                  " (need > 0, > 0 and 0, 1 or 2)");
+  }
+  std::copy(v.data(), v.data() + v.size(), history_.begin());
+  trial_ = history_;
 }
 
 void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
   const int ne = model_.mesh.numElements(), n = model_.mesh.numNodes();
   double* fe = fe_.data();
+  core::ParallelErrors errors; // a nonlinear law's failure, naming the element
   // Threads only pay off on large meshes (on small ones their start-up dominates).
 #pragma omp parallel if (ne > kParallelElements)
   {
@@ -100,7 +216,8 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
     for (int e = 0; e < ne; ++e) {
       const Packed& p = packed_[e];
       double* out = fe + 9 * static_cast<size_t>(e);
-      if (p.region < 0) {
+      const bool law_element = p.region < 0 && hasHistory() && history_offset_[e] >= 0;
+      if (p.region < 0 && !law_element) {
         const FabricStress st = stress(e, u);
         const Eigen::Matrix3d fa =
             fabricForces(elements_[e], st, model_.sections[-1 - p.region].thickness);
@@ -115,6 +232,12 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
           F0[c] += x * p.dN[2 * a];
           F1[c] += x * p.dN[2 * a + 1];
         }
+      }
+      if (law_element) {
+        Eigen::Matrix<double, 3, 2> F;
+        F << F0[0], F1[0], F0[1], F1[1], F0[2], F1[2];
+        errors.run([&] { lawElementForce(e, F, out); });
+        continue;
       }
       const double c00 = F0[0] * F0[0] + F0[1] * F0[1] + F0[2] * F0[2];
       const double c11 = F1[0] * F1[0] + F1[1] * F1[1] + F1[2] * F1[2];
@@ -140,6 +263,7 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
       f.segment<3>(3 * i) = s;
     }
   }
+  errors.rethrow();
 }
 
 double LargeDeflection::strainEnergy(const Eigen::VectorXd& u) const {
@@ -148,6 +272,10 @@ double LargeDeflection::strainEnergy(const Eigen::VectorXd& u) const {
 #pragma omp parallel for reduction(+ : U) schedule(static) if (ne > kParallelElements)
   for (int e = 0; e < ne; ++e) {
     const int r = model_.mesh.region_of[e];
+    if (const double* b = history(e)) {
+      U += model_.sections[r].thickness * elements_[e].area0 * b[LawPoint::kPsi];
+      continue;
+    }
     const FabricStress st = stress(e, u);
     const double w = model_.sections[r].tension_only
                          ? fabricStoredEnergy(st, cps_inv_[r], s0_[r])
@@ -169,6 +297,44 @@ double LargeDeflection::stableStep() const {
   return criticalStep(model_.mesh, speed);
 }
 
+double LargeDeflection::currentStableStep() const {
+  if (!hasHistory())
+    return stableStep();
+  const size_t nr = model_.sections.size();
+  std::vector<double> jmin(nr, std::numeric_limits<double>::infinity()), jmax(nr, 0.0);
+  for (int e = 0; e < model_.mesh.numElements(); ++e)
+    if (const double* b = history(e)) {
+      const auto r = static_cast<size_t>(model_.mesh.region_of[e]);
+      jmin[r] = std::min(jmin[r], b[LawPoint::kJ]);
+      jmax[r] = std::max(jmax[r], b[LawPoint::kJ]);
+    }
+  std::vector<double> speed;
+  for (size_t r = 0; r < nr; ++r) {
+    const Section& s = model_.sections[r];
+    if (s.isLinear()) {
+      const Eigen::Vector2d t = principal2(s0_[r][0], s0_[r][1], s0_[r][2]);
+      speed.push_back(std::sqrt(
+          (maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(t[0], 0.0)) / s.density));
+      continue;
+    }
+    // The instantaneous stiffness is the fastest the law can respond (any
+    // rate); it changes with J. Reference mass and length: the stress per
+    // reference area grows with J, hence the factor max(J, 1).
+    double modulus = 0;
+    const double lo = std::min(jmin[r], 1.0), hi = std::max(jmax[r], 1.0);
+    for (int k = 0; k <= 8; ++k) {
+      const double J = lo + (hi - lo) * k / 8.0;
+      const Eigen::Matrix3d c = planeStressStiffness(s.law->elasticStiffness(J).matrix());
+      modulus = std::max(modulus, std::max(J, 1.0) * maxWaveModulus(c, StrainKind::PlaneStress));
+    }
+    speed.push_back(std::sqrt(modulus / s.density));
+  }
+  double dt = std::numeric_limits<double>::infinity();
+  for (size_t r = 0; r < nr; ++r)
+    dt = std::min(dt, min_length_[r] / speed[r]);
+  return dt;
+}
+
 std::vector<CellField> LargeDeflection::cellFields(const Eigen::VectorXd& u) const {
   const int ne = model_.mesh.numElements();
   const auto sz = static_cast<size_t>(ne);
@@ -177,12 +343,15 @@ std::vector<CellField> LargeDeflection::cellFields(const Eigen::VectorXd& u) con
   CellField pstrain{"principal_strain", 2, std::vector<double>(2 * sz)};
   CellField pstress{"principal_stress", 2, std::vector<double>(2 * sz)};
   CellField wrinkled{"wrinkled", 1, std::vector<double>(sz)};
+  CellField inelastic{"inelastic_strain", 1, std::vector<double>(sz, 0.0)};
+  CellField inelastic_rate{"inelastic_strain_rate", 1, std::vector<double>(sz, 0.0)};
+  CellField lambda3{"thickness_stretch", 1, std::vector<double>(sz, 1.0)};
 #pragma omp parallel for schedule(static) if (ne > kParallelElements)
   for (int e = 0; e < ne; ++e) {
     const FabricStress st = stress(e, u);
     const auto k = static_cast<size_t>(e);
     const Eigen::Vector2d pe = principal2(st.E[0], st.E[1], 0.5 * st.E[2]);
-    const Eigen::Vector2d ps = principalCauchy(st);
+    const Eigen::Vector2d ps = cauchyPrincipal(e, st);
     for (int c = 0; c < 3; ++c) {
       strain.values[3 * k + c] = st.E[c];
       stress_f.values[3 * k + c] = st.S[c];
@@ -192,7 +361,14 @@ std::vector<CellField> LargeDeflection::cellFields(const Eigen::VectorXd& u) con
       pstress.values[2 * k + c] = ps[c];
     }
     wrinkled.values[k] = static_cast<double>(static_cast<int>(st.state));
+    if (const double* b = history(e)) {
+      inelastic.values[k] = b[LawPoint::kInelastic];
+      inelastic_rate.values[k] = b[LawPoint::kInelasticRate];
+      lambda3.values[k] = b[LawPoint::kLambda3];
+    }
   }
+  if (hasHistory())
+    return {strain, stress_f, pstrain, pstress, wrinkled, inelastic, inelastic_rate, lambda3};
   return {strain, stress_f, pstrain, pstress, wrinkled};
 }
 
@@ -216,7 +392,7 @@ void LargeDeflection::checkFailure(double t, const Eigen::VectorXd& u,
     const FabricStress st = stress(e, u);
     if (principal2(st.E[0], st.E[1], 0.5 * st.E[2])[0] >= s.failure_strain)
       hit[e] = FailureCriterion::Strain;
-    else if (principalCauchy(st)[0] >= s.failure_stress)
+    else if (cauchyPrincipal(e, st)[0] >= s.failure_stress)
       hit[e] = FailureCriterion::Stress;
   }
   for (int e = 0; e < ne; ++e)

@@ -5,6 +5,13 @@
 /// region, pre-stress, tension-only wrinkling, failure thresholds, lumped
 /// mass (rho h A / 3 per node plus point masses). The internal force is
 /// computed element by element (no global stiffness), in parallel.
+///
+/// A section with a linear law has S = C_ps E + S0 (Saint Venant-Kirchhoff,
+/// the fast path). A section with a nonlinear law (GVBO, a reduced-order
+/// cell) keeps a history block per element (law_point.hpp: the law's state,
+/// its strain, the thickness stretch, the stored and dissipated energy),
+/// owned here: committed and trial copies, the trial one written by
+/// internalForce() and accepted by commitStep() (structure.hpp).
 
 #include "membrane/model/fabric_element.hpp"
 #include "membrane/model/model.hpp"
@@ -27,19 +34,46 @@ public:
   /// stored energy h A0 (S.C_ps^-1 S - S0.C_ps^-1 S0) / 2 of fabricStoredEnergy()
   /// (a state function, but not a potential of the tension-only force)
   double strainEnergy(const Eigen::VectorXd& u) const override;
-  bool hasPotential() const override { return !any_tension_only_; }
+  bool hasPotential() const override { return !any_tension_only_ && !hasHistory(); }
+  bool nonConservativeWrinkling() const override { return any_linear_tension_only_; }
+  /// The stable step at rest: a nonlinear law's instantaneous stiffness at J = 1
   double stableStep() const override;
+  /// The stable step at the committed history: a nonlinear region's
+  /// instantaneous stiffness elasticStiffness(J) taken at 9 values of J across
+  /// the range of J of its elements (the largest wave modulus over them)
+  double currentStableStep() const override;
+  bool hasHistory() const override { return !history_offset_.empty(); }
+  void beginStep(double t1, double dt) override {
+    step_t1_ = t1;
+    step_dt_ = dt;
+  }
+  void commitStep() override { std::swap(history_, trial_); }
+  /// Sum over the elements of h0 A0 times their dissipation per reference volume
+  double inelasticDissipation() const override;
+  /// Entry "structure/law_history": the committed blocks of every element with a
+  /// nonlinear law, in element order
+  void saveHistory(History& h) const override;
+  void restoreHistory(const History& h) override;
   /// "strain" and "stress" ([E11, E22, 2E12], [S11, S22, S12] in the element's
   /// material frame), "principal_strain", "principal_stress" (Cauchy, Pa; major
-  /// first), "wrinkled" (0 taut, 1 wrinkled, 2 slack)
+  /// first), "wrinkled" (0 taut, 1 wrinkled, 2 slack); with a nonlinear law
+  /// also "inelastic_strain" (equivalent, accumulated), "inelastic_strain_rate"
+  /// (1/s, over the last step) and "thickness_stretch" (h / h0); 0, 0 and 1
+  /// in linear sections
   std::vector<CellField> cellFields(const Eigen::VectorXd& u) const override;
   bool deformedGeometry() const override { return true; }
   bool hasFailureThresholds() const override { return any_threshold_; }
   void checkFailure(double t, const Eigen::VectorXd& u, FailureRecord& record) const override;
   double setupSeconds() const override { return setup_s_; }
 
-  /// @return the stress state of element @p e at displacements @p u
+  /// @return the stress state of element @p e at displacements @p u (with a
+  /// nonlinear law: its committed stress, u the displacements of the commit)
   FabricStress stress(int e, const Eigen::VectorXd& u) const;
+  /// @return the committed history block of element @p e (law_point.hpp), or
+  /// nullptr in a section with a linear law
+  const double* history(int e) const {
+    return hasHistory() && history_offset_[e] >= 0 ? history_.data() + history_offset_[e] : nullptr;
+  }
   /// @return the reference data of element @p e
   const FabricElement& element(int e) const { return elements_[e]; }
   /// @return C_ps of region @p r (Pa)
@@ -65,7 +99,20 @@ private:
   std::vector<Packed> packed_;
   std::vector<double> x0_; // reference positions, 3 per node (m)
   SparseMatrix M_;
-  bool any_tension_only_ = false, any_threshold_ = false;
+  bool any_tension_only_ = false, any_linear_tension_only_ = false, any_threshold_ = false;
+  /// Per element: offset of its history block in history_, -1 with a linear
+  /// law; empty when no section has a nonlinear law.
+  std::vector<long> history_offset_;
+  std::vector<double> history_;       // committed blocks
+  mutable std::vector<double> trial_; // blocks of the last internalForce()
+  double step_t1_ = 0, step_dt_ = 0;  // the step of the next internalForce()
+  std::vector<double> min_length_;    // per region: min element length 2 A / longest edge (m)
+  /// The force of a nonlinear element at F (trial history), into @p out (9).
+  void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
+  /// @return the principal Cauchy stresses of element @p e in state @p st (its law's with history)
+  Eigen::Vector2d cauchyPrincipal(int e, const FabricStress& st) const;
+  /// Builds the history blocks of the nonlinear sections.
+  void initHistory();
   double setup_s_ = 0;
 };
 

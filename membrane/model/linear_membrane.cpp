@@ -1,5 +1,6 @@
 #include "membrane/model/linear_membrane.hpp"
 
+#include "core/error.hpp"
 #include "membrane/model/stable_step.hpp"
 
 #include <chrono>
@@ -8,6 +9,11 @@
 namespace lamina::membrane {
 
 LinearMembrane::LinearMembrane(const Model& model) : model_(model) {
+  for (const Section& s : model.sections) // models are also built by hand, not only from cases
+    LAMINA_CHECK(s.isLinear(), "section '", s.name, "' (", s.material, ") has a nonlinear law (",
+                 materials::toString(s.law->kind()),
+                 "), which the linear (paper's) model cannot carry: use model = "
+                 "\"large_deflection\"");
   const auto t0 = std::chrono::steady_clock::now();
   GlobalMatrices g = assemble(model.mesh, model.sections, model.time.lumped);
   K_ = std::move(g.K);

@@ -15,6 +15,8 @@ namespace lamina::membrane {
 class LinearMembrane final : public Structure {
 public:
   /// Assembles K and M of @p model (consistent or lumped mass per model.time.lumped).
+  /// Throws lamina::Error naming the section when a section's law is not
+  /// linear (Section::isLinear): only the large-deflection model steps one.
   explicit LinearMembrane(const Model& model);
   int numDofs() const override { return static_cast<int>(K_.rows()); }
   const SparseMatrix& mass() const override { return M_; }

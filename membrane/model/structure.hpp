@@ -7,9 +7,20 @@
 /// A model (the paper's linear membrane, the large-deflection fabric) is a
 /// type behind this interface; an integrator that needs more (Newmark needs
 /// the constant stiffness K) asks for it and refuses a model without it.
+///
+/// Material history: when a section's law carries state (hasHistory()), the
+/// internal force depends on the path. The owner of the structure then
+/// calls beginStep(t1, dt) before a step; internalForce(u) is the force at
+/// t1 of one step from the committed history to displacements u (the trial
+/// history is kept aside), commitStep() accepts the trial once the step is
+/// finite, and strainEnergy(), cellFields(), checkFailure() and
+/// inelasticDissipation() describe the committed history (their u must be
+/// the displacements it was committed at). A structure without history
+/// ignores all of this.
 
 #include "membrane/model/assembly.hpp"
 #include "membrane/model/failure.hpp"
+#include "membrane/model/history.hpp"
 
 #include <Eigen/Dense>
 
@@ -65,6 +76,34 @@ public:
   }
   /// @return seconds spent building the model's matrices
   virtual double setupSeconds() const { return 0; }
+  /// @return true when the internal force of the wrinkling law is neither the
+  /// gradient of strainEnergy() nor accounted for by a law's dissipation (the
+  /// tension-only projection of elastic sections): the bookkeeping then
+  /// reports the internal work no energy holds as wrinkling dissipation
+  virtual bool nonConservativeWrinkling() const { return false; }
+
+  /// @return true when a section's law carries history (see the file comment)
+  virtual bool hasHistory() const { return false; }
+  /// Sets the step of the next internalForce() calls: from the committed
+  /// history to time @p t1 (s) over @p dt (s, >= 0; 0 at the initial state).
+  virtual void beginStep(double t1, double dt) {
+    (void)t1;
+    (void)dt;
+  }
+  /// Accepts the history of the last internalForce() call.
+  virtual void commitStep() {}
+  /// @return the inelastic dissipation of the committed history since t = 0 (J)
+  virtual double inelasticDissipation() const { return 0; }
+  /// @return the stable step at the committed history (s, as stableStep());
+  /// for a law whose stiffness changes with the state (GVBO stiffens in
+  /// compression) it changes as the run goes
+  virtual double currentStableStep() const { return stableStep(); }
+  /// Saves the committed history into @p h (keys of the structure's choosing).
+  virtual void saveHistory(History& h) const { (void)h; }
+  /// Restores what saveHistory() wrote, on a structure just built from the
+  /// same model; throws lamina::Error naming a missing, mis-sized or
+  /// out-of-range entry.
+  virtual void restoreHistory(const History& h) { (void)h; }
 };
 
 } // namespace lamina::membrane

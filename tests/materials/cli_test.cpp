@@ -484,6 +484,23 @@ TEST_F(MaterialsProgram, DriveWritesTheDocumentedCsv) {
   ASSERT_EQ(last.size(), 13u);
   const double C44 = 72.4e9 / (2 * 1.22); // E / (2 (1 + nu)) of e-glass
   EXPECT_NEAR(last[10], C44 * 0.001, 1e-9 * C44 * 0.001);
+  // biaxial stress on the command line: sigma_xx = sigma_yy = E/(1 - nu) e,
+  // sigma_zz ~ 0 (drive's tolerance 1e-10 of sigma_xx + 1e-6 Pa)
+  const auto csv3 = dir_ / "biaxial.csv";
+  r = run("drive glass --path biaxial-stress --rate 1 --to 0.001 --steps 4 --kinematics small "
+          "--out '" +
+          csv3.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string text3 = lamina::test::readFile(csv3);
+  std::istringstream biaxLine(text3.substr(text3.rfind('\n', text3.size() - 2) + 1));
+  std::vector<double> biax;
+  for (std::string item; std::getline(biaxLine, item, ',');)
+    biax.push_back(std::stod(item));
+  ASSERT_EQ(biax.size(), 13u);
+  const double Eb = 72.4e9 / (1 - 0.22) * 0.001; // e-glass biaxial modulus times e
+  EXPECT_NEAR(biax[7], Eb, 1e-9 * Eb);
+  EXPECT_NEAR(biax[8], Eb, 1e-9 * Eb);
+  EXPECT_LE(std::abs(biax[9]), 1e-10 * Eb + 1e-6);
   // bad input: unknown path, unknown material
   EXPECT_EQ(run("drive polyurea-gvbo --path twist --rate 1 --to 0.1 --out x.csv").status, 2);
   r = run("drive no-such --path shear --rate 1 --to 0.1 --out '" + (dir_ / "x.csv").string() + "'");

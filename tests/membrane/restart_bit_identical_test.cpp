@@ -100,6 +100,35 @@ field_every = 7
 energy_every = 3
 )";
 
+/// A GVBO polyurea sheet (the catalog's, a law with history at every
+/// element), tension only, struck: the history blocks, the adaptive step and
+/// the law's dissipation must continue bit for bit; 40-odd steps.
+const char* kGvbo = R"(
+model = "large_deflection"
+[mesh]
+type = "rectangle"
+Lx = 0.2
+nx = 6
+[[section]]
+material = "polyurea-gvbo"
+thickness = 1.0e-3
+tension_only = true
+[time]
+integrator = "explicit"
+safety = 0.5
+t_end = 6.0e-4
+[[fixed]]
+nodes = "edges"
+[initial]
+velocity = [0.0, 0.0, 20.0]
+[[probe]]
+name = "centre"
+at = [0.1, 0.1]
+[output]
+field_every = 7
+energy_every = 3
+)";
+
 /// Runs @p model uninterrupted into DIR/full; @return its options.
 RunOptions runFull(const Model& model, const fs::path& dir, long& steps) {
   RunOptions full;
@@ -139,6 +168,10 @@ TEST(Restart, LinearNewmarkContinuesBitIdentically) {
 TEST(Restart, LargeDeflectionExplicitContinuesBitIdentically) {
   // Elements fail from step 43 on: the stop at 47 splits the failure history.
   expectRestartIdentical(kLargeDeflection, 47, "restart-large");
+}
+
+TEST(Restart, GvboSectionsContinueBitIdentically) {
+  expectRestartIdentical(kGvbo, 17, "restart-gvbo");
 }
 
 // kill -9 after a periodic checkpoint: the tables already hold rows written
