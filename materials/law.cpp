@@ -2,6 +2,8 @@
 
 #include "core/error.hpp"
 
+#include <Eigen/Cholesky>
+
 #include <array>
 #include <utility>
 
@@ -37,6 +39,10 @@ std::string lawKindNames() {
     if (kind != LawKind::ReducedOrder) // referred to by an entry's name, not given with keys
       out += (out.empty() ? "" : ", ") + std::string(name);
   return out;
+}
+
+double ConstitutiveLaw::storedEnergy(const Vector6& sigma, const double*, double J) const {
+  return 0.5 * sigma.dot(elasticStiffness(J).matrix().ldlt().solve(sigma));
 }
 
 LinearElasticLaw::LinearElasticLaw(LawKind kind, const Stiffness& C) : kind_(kind), C_(C) {

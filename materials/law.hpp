@@ -77,6 +77,16 @@ public:
   /// d sigma / d eps at t_{n+1} (lamina order, engineering shear, Pa).
   virtual void update(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
                       Matrix6* tangent) const = 0;
+  /// Energy stored per unit volume of the law's frame at a state whose
+  /// stress is @p sigma (J/m^3): the work the law would return on elastic
+  /// unloading. Default: sigma . C(J)^-1 sigma / 2 with C =
+  /// elasticStiffness(J) (C maps engineering strain to stress, so C^-1 sigma
+  /// is an engineering strain and the dot product with the tensor components
+  /// of sigma is the full contraction). Used by callers to split the work of
+  /// the stress into stored energy and inelastic dissipation. @p state is
+  /// the law's state at that stress (stateSize() doubles; may be null for a
+  /// law without state), @p J its volume ratio.
+  virtual double storedEnergy(const Vector6& sigma, const double* state, double J) const;
 };
 
 /// Shared handle to an immutable law.

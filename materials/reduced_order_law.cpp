@@ -1,6 +1,7 @@
 #include "materials/reduced_order_law.hpp"
 
 #include "core/error.hpp"
+#include "materials/gvbo_law.hpp"
 
 #include <Eigen/LU>
 
@@ -289,6 +290,42 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
     const auto begin = t.state.begin() + trial_offset_[k];
     std::copy(begin, begin + laws_[uz(a)]->stateSize(), state + offset_[uz(a)] + 6);
   }
+}
+
+Vector6 ReducedOrderLaw::partitionStress(int alpha, const double* block, double J) const {
+  const ConstitutiveLaw& law = *laws_[uz(alpha)];
+  if (law.kind() == LawKind::Gvbo)
+    return Eigen::Map<const Vector6>(block + 6 + GvboState::kSigma);
+  // any other law: the stress of a step that changes nothing
+  PointStep ps;
+  ps.eps_n = ps.eps = Eigen::Map<const Vector6>(block);
+  ps.J_n = ps.J = J;
+  std::vector<double> scratch(uz(law.stateSize()));
+  Vector6 sigma;
+  law.update(ps, block + 6, scratch.data(), sigma, nullptr);
+  return sigma;
+}
+
+double ReducedOrderLaw::storedEnergy(const Vector6& sigma, const double* state, double J) const {
+  if (nonlinear_.empty())
+    return ConstitutiveLaw::storedEnergy(sigma, state, J); // C_linear_: sum c L A
+  const int n = model_.partitions();
+  double tr_c = 0;
+  for (int a = 0; a < n; ++a)
+    tr_c += model_.fraction[uz(a)] * trace(Eigen::Map<const Vector6>(state + offset_[uz(a)]));
+  double W = 0;
+  for (int a = 0; a < n; ++a) {
+    const double* block = state + offset_[uz(a)];
+    const Vector6 eps_a = Eigen::Map<const Vector6>(block);
+    const double c = model_.fraction[uz(a)];
+    if (laws_[uz(a)]->isLinear()) {
+      W += c * 0.5 * eps_a.dot(L0_[uz(a)] * eps_a);
+      continue;
+    }
+    const double J_a = partitionJ(J, trace(eps_a), tr_c);
+    W += c * laws_[uz(a)]->storedEnergy(partitionStress(a, block, J_a), block + 6, J_a);
+  }
+  return W;
 }
 
 Matrix6 ReducedOrderLaw::nonlinearDispersion(const ReducedOrderStepInfo& info) const {

@@ -140,6 +140,18 @@ public:
   /// Newton residual and the iterations when the Newton does not converge.
   void update(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
               Matrix6* tangent) const override;
+  /// The energy stored in the partitions: sum_alpha c_alpha W_alpha, W_alpha
+  /// its law's storedEnergy of its own stress, state and volume ratio
+  /// J^(alpha) (as update() forms it from the coarse @p J, with tr eps^c =
+  /// sum c_alpha tr eps^(alpha), exact as sum c A = I and sum c P = 0). A
+  /// GVBO partition's stress is the one its state holds (GvboState::kSigma),
+  /// another nonlinear law's that of a zero step (eps = eps_n, dt = 0) from
+  /// its state; a linear partition's W is eps^(alpha) . L eps^(alpha) / 2 of
+  /// the strain in the state. The coarse @p sigma is not used then. A linear
+  /// cell (no state): sigma . C^-1 sigma / 2 with C = sum c L A, the energy
+  /// its stress returns on unloading (for the exact laminate the partition
+  /// sum too, by Hill's lemma).
+  double storedEnergy(const Vector6& sigma, const double* state, double J) const override;
   /// As update(), also reporting the iterations, the residual and d mu / d
   /// eps^c in @p info (if not null).
   void updateWithInfo(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
@@ -177,6 +189,8 @@ private:
   /// Throws unless sym(sum c L0 A) of the phases' laws equals the model's C
   /// (1e-9 of max|C|): the phases in the library text belong to the arrays.
   void checkPhasesMatchArrays() const;
+  /// The stress of nonlinear partition @p alpha from its state block @p block.
+  Vector6 partitionStress(int alpha, const double* block, double J) const;
   [[noreturn]] void fail(const std::string& message) const;
 
   std::string entry_;
