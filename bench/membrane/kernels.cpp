@@ -7,8 +7,11 @@
 // fabric model and of the linear model, with their ratios to the SpMVs.
 // Wall times are the best of the repetitions (the machine is shared: the
 // best is the least disturbed), CPU times the mean over all threads.
-// Usage: membrane_kernels N THREADS [STEPS] [all|explicit]
+// Usage: membrane_kernels N THREADS [STEPS] [all|explicit|law]
 //   explicit: only the SpMV floor and the explicit steps (large meshes)
+//   law: the explicit step of bench/membrane/gvbo.toml (N x N polyurea
+//        sheet) with a GVBO section against the same sheet elastic at the
+//        GVBO rest moduli, and their ratio (bench/membrane/gvbo.sh)
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/io/case_file.hpp"
 #include "membrane/model/block_matrix.hpp"
@@ -39,6 +42,36 @@ void ratio(const char* what, Timing a, Timing b) {
   std::printf("  %-32s %.2f (best wall)  %.2f (cpu)\n", what, a.best / b.best, a.cpu / b.cpu);
 }
 
+/// The explicit step of bench/membrane/gvbo.toml at N x N with the section of
+/// catalog material @p material, whose law must be linear iff @p linear
+/// (else it exits 1: a timing of the wrong path is worse than none); prints
+/// the line and @return its timing.
+Timing lawStep(int N, int steps, const char* material, bool linear, const char* what) {
+  const std::vector<std::string> set{"mesh.nx=" + std::to_string(N),
+                                     std::string("section[0].material=") + material};
+  const membrane::Model model = membrane::readCase(LAMINA_SOURCE_DIR "/bench/membrane/gvbo.toml",
+                                                   set, {"/nonexistent/library.toml", ""});
+  if (model.sections.at(0).isLinear() != linear) {
+    std::fprintf(stderr, "membrane_kernels: the section of '%s' is %s; expected %s\n", material,
+                 linear ? "not linear" : "linear", linear ? "linear" : "its nonlinear law");
+    std::exit(1);
+  }
+  membrane::Simulation sim(model);
+  return timeIt(what, steps, [&] { sim.step(); });
+}
+
+/// `law` mode: GVBO sheet against the elastic sheet, best wall and CPU per step.
+int lawMode(int N, int threads, int steps) {
+  std::printf("N = %d (%d triangles), threads = %d, polyurea sheet (bench/membrane/gvbo.toml)\n",
+              N, 2 * N * N, threads);
+  const Timing elastic = lawStep(N, steps, "polyurea-elastic-rest", true, "explicit step, elastic");
+  const Timing gvbo = lawStep(N, steps, "polyurea-gvbo", false, "explicit step, GVBO");
+  ratio("GVBO step / elastic step", gvbo, elastic);
+  std::printf("  per element and step: GVBO %.3f us wall, %.3f us cpu\n",
+              1e6 * gvbo.best / (2.0 * N * N), 1e6 * gvbo.cpu / (2.0 * N * N));
+  return 0;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -47,6 +80,8 @@ int main(int argc, char** argv) {
   const int steps = argc > 3 ? std::atoi(argv[3]) : 40;
   const bool all = !(argc > 4 && std::strcmp(argv[4], "explicit") == 0);
   omp_set_num_threads(threads);
+  if (argc > 4 && std::strcmp(argv[4], "law") == 0)
+    return lawMode(N, threads, steps);
   const double c = std::sqrt(1e9 / (2 * 1.3) / 1000), dt = 0.4 / N / c;
   const std::vector<std::string> set{"mesh.nx=" + std::to_string(N),
                                      "time.dt=" + std::to_string(dt),

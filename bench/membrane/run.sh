@@ -9,10 +9,12 @@
 # 2. membrane_kernels (bench/membrane/kernels.cpp) at KERNEL_SIZES: one
 #    product with K in each storage (the 3x3-block one is the memory floor
 #    of a step) and the Newmark step, best and median wall and CPU per call.
+# 3. bench/membrane/gvbo.sh at GVBO_SIZES: the explicit step of a GVBO
+#    polyurea sheet against the same sheet elastic, 1 and 2 threads.
 # The machine may be shared: compare against a baseline run in the same
 # session (alternate the binaries), not against old figures.
 # Usage: bash bench/membrane/run.sh [BUILD_DIR]
-#   env: SIZES="100 300 800" STEPS=200 KERNEL_SIZES="300"
+#   env: SIZES="100 300 800" STEPS=200 KERNEL_SIZES="300" GVBO_SIZES="300" GVBO_STEPS=20
 set -euo pipefail
 BUILD="${1:-build}"
 cd "$(dirname "$0")/../.."
@@ -69,3 +71,4 @@ if [ -x "$BUILD/bin/membrane_kernels" ]; then
     done
   done
 fi
+SIZES="${GVBO_SIZES:-300}" STEPS="${GVBO_STEPS:-20}" bash bench/membrane/gvbo.sh "$BUILD"

@@ -65,18 +65,18 @@ std::vector<int> readConstraints(const core::TableReader& root, Model& model) {
   return owner;
 }
 
-/// [initial]: uniform initial velocity (optional).
+/// [initial]: an initial velocity (optional), uniform and/or one sine mode,
+/// on the nodes of its selector (nodes, box, at, region, all; none: every node).
 void readInitial(const core::TableReader& root, Model& model) {
   const Mesh& mesh = model.mesh;
-  const int n = mesh.numNodes();
-  const int ndof = 3 * n;
   if (auto ini = root.optionalTable("initial")) {
-    model.v0 = Eigen::VectorXd::Zero(ndof);
+    model.v0 = Eigen::VectorXd::Zero(3 * mesh.numNodes());
+    const std::vector<int> nodes = selectNodes(mesh, readSelectorOrAll(*ini), *ini);
     if (ini->has("velocity") || !ini->has("mode")) {
       const auto v = ini->getDoubleArray("velocity");
       if (v.size() != 3)
         ini->fail("velocity", "expected [vx, vy, vz]");
-      for (int i = 0; i < n; ++i)
+      for (int i : nodes)
         for (int c = 0; c < 3; ++c)
           model.v0[3 * i + c] = v[c];
     }
@@ -88,7 +88,7 @@ void readInitial(const core::TableReader& root, Model& model) {
         ini->fail("mode", "expected [m, n], integers >= 1");
       const double V = ini->getDouble("mode_velocity");
       const auto [xmin, xmax, ymin, ymax] = mesh.bounds();
-      for (int i = 0; i < n; ++i)
+      for (int i : nodes)
         model.v0[3 * i + 2] += V *
                                std::sin(mn[0] * kPi * (mesh.nodes[i].x() - xmin) / (xmax - xmin)) *
                                std::sin(mn[1] * kPi * (mesh.nodes[i].y() - ymin) / (ymax - ymin));
