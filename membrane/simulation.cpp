@@ -192,8 +192,9 @@ void Simulation::restore(const History& h, long last_step) {
   // The schemes compute t_n from the step count (no accumulated round-off): exactly.
   if (state_.t != integrator_->timeAt(state_.step))
     throw Error("checkpoint entry 'state/time' holds t = " + core::formatExact(state_.t) +
-                " s at step " + std::to_string(state_.step) + ", not the scheme's " +
-                core::formatExact(integrator_->timeAt(state_.step)) + " s");
+                " s at step " + std::to_string(state_.step) + ", not step * dt = " +
+                core::formatExact(integrator_->timeAt(state_.step)) +
+                " s (the scheme's time of that step)");
   state_.u = historyEntry(h, "state/u", n);
   state_.v = historyEntry(h, "state/v", n);
   state_.a = historyEntry(h, "state/a", n);
