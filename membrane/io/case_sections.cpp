@@ -33,9 +33,10 @@ constexpr std::array<const char*, 5> kFabricKeys = {"material_axis", "prestress"
 constexpr std::array<const char*, 5> kOwnKeys = {"region", "density", "thickness", "dispersion",
                                                  "micro_inertia"};
 
-/// Runs @p f, a look-up in the material sources; an error without a file of
-/// its own (an unknown name, a reduced-order entry's side file) is blamed on
-/// @p key of @p r, while a broken library or catalog file keeps its file and line.
+/// Runs @p f (a look-up in the material sources, a ply, a law's own check of
+/// its parameters); an error without a file of its own (an unknown name, a
+/// reduced-order entry's side file, GVBO's Et >= E0) is blamed on @p key of
+/// @p r, while a broken library or catalog file keeps its file and line.
 template <class F>
 auto blamed(const core::TableReader& r, const std::string& key, F&& f) -> decltype(f()) {
   try {
