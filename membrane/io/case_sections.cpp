@@ -27,15 +27,16 @@ namespace {
 
 /// The large-deflection keys of a [[section]].
 constexpr std::array<const char*, 5> kFabricKeys = {"material_axis", "prestress", "tension_only",
-                                                   "failure_strain", "failure_stress"};
+                                                    "failure_strain", "failure_stress"};
 /// The keys of a [[section]] with an inline law that are not its law's
 /// (with kFabricKeys; the law's own keys are materials::readLawSpec's).
 constexpr std::array<const char*, 5> kOwnKeys = {"region", "density", "thickness", "dispersion",
-                                                "micro_inertia"};
+                                                 "micro_inertia"};
 
-/// Runs @p f, a look-up in the material sources; an error without a file of
-/// its own (an unknown name, a reduced-order entry's side file) is blamed on
-/// @p key of @p r, while a broken library or catalog file keeps its file and line.
+/// Runs @p f (a look-up in the material sources, a ply, a law's own check of
+/// its parameters); an error without a file of its own (an unknown name, a
+/// reduced-order entry's side file, GVBO's Et >= E0) is blamed on @p key of
+/// @p r, while a broken library or catalog file keeps its file and line.
 template <class F>
 auto blamed(const core::TableReader& r, const std::string& key, F&& f) -> decltype(f()) {
   try {
@@ -103,7 +104,9 @@ void readInlineLaw(const core::TableReader& r, Section& s) {
   };
   const materials::LawSpec spec = read(r);
   checkLawKeys(r, read, materials::toString(spec.kind));
-  s.law = spec.make();
+  // the law checks the ranges of its parameters (GvboLaw: Et < E0, k1 > 0, ...)
+  s.law = blamed(r, spec.kind == materials::LawKind::Gvbo ? "gvbo" : "law",
+                 [&] { return spec.make(); });
   s.D = s.law->elasticStiffness(1.0).matrix(); // a linear law: spec.C, bit for bit
   s.density = r.getDouble("density");
   s.material = std::string("inline ") + materials::toString(spec.kind);
@@ -125,11 +128,11 @@ std::optional<double> readLayup(const core::TableReader& r, materials::MaterialS
     const materials::LawPtr law =
         reduced ? nullptr : blamed(r, "plies", [&] { return source.law(name); });
     if (reduced || !law->isLinear())
-      r.fail("plies", "ply material '" + name + "' has a nonlinear law (" +
-                          materials::toString(reduced ? materials::LawKind::ReducedOrder
-                                                      : law->kind()) +
-                          "): a layup is a linear laminate of elastic plies; give it as a "
-                          "section's material instead");
+      r.fail("plies",
+             "ply material '" + name + "' has a nonlinear law (" +
+                 materials::toString(reduced ? materials::LawKind::ReducedOrder : law->kind()) +
+                 "): a layup is a linear laminate of elastic plies; give it as a "
+                 "section's material instead");
     return m;
   };
   const materials::Material m =
@@ -166,8 +169,9 @@ void checkLawFitsModel(const core::TableReader& r, ModelKind kind, const Section
 void readMicroInertia(const core::TableReader& r, bool named, Section& s) {
   if (r.has("dispersion")) {
     if (named)
-      r.fail("dispersion", "only with an inline material (law, E or C): a named material brings its "
-                           "own dispersion from the library");
+      r.fail("dispersion",
+             "only with an inline material (law, E or C): a named material brings its "
+             "own dispersion from the library");
     const auto d = r.getMatrix("dispersion");
     bool ok = d.size() == 6;
     for (const auto& row : d)
@@ -225,8 +229,7 @@ void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
 }
 
 /// Reads one [[section]]: its law by material name, inline, or plies.
-Section readSection(const core::TableReader& r, materials::MaterialSource& source,
-                    ModelKind kind) {
+Section readSection(const core::TableReader& r, materials::MaterialSource& source, ModelKind kind) {
   const bool by_name = r.has("material"), layup = r.has("plies");
   const int inline_law = r.has("law") ? 1 : int(r.has("E")) + int(r.has("C"));
   if (by_name + layup + inline_law != 1)

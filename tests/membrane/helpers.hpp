@@ -7,10 +7,13 @@
 #include "membrane/io/case_file.hpp"
 #include "membrane/simulation.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -46,6 +49,40 @@ inline std::string buildError(const std::string& text, const std::string& name =
     return e.what();
   }
   return "";
+}
+
+/// Builds a model from case text (name "test.toml" in errors) with the
+/// library file @p library and the source tree's catalog.
+inline Model modelWithLibrary(const std::string& text, const std::filesystem::path& library) {
+  const toml::table doc = core::parseTomlString(text, "test.toml");
+  return buildModel(doc, std::filesystem::path(LAMINA_SOURCE_DIR) / "cases/membrane/test.toml",
+                    {library.string(), std::string(LAMINA_SOURCE_DIR) + "/materials/catalog.toml"});
+}
+
+/// Expects an error @p message (not "": refused) that contains every one of @p parts.
+inline void expectHas(const std::string& message, const std::vector<std::string>& parts) {
+  ASSERT_FALSE(message.empty()) << "accepted";
+  for (const auto& p : parts)
+    EXPECT_NE(message.find(p), std::string::npos) << "no '" << p << "' in: " << message;
+}
+
+/// Section keys of an inline GVBO law with the polyurea chapter's Table 5
+/// (SI: MPa -> Pa, 1/MPa -> 1/Pa; density 1.1 g/cm^3), as in the catalog.
+inline std::string gvboTable5Keys() {
+  return "law = \"gvbo\"\nE = 278.0e6\nnu = 0.491\ndensity = 1100.0\n"
+         "gvbo = { Et = 23.3e6, p = -6.0, a1 = 0.0, a2 = 10.0e6, a3 = 0.0, k1 = 17.0, "
+         "k2 = 0.47e6, k3 = 1.47e6, k4 = 4.0, Em = 13600.0e6, A0 = 1.0e6, Ac = 0.0, Af = 0.0 }\n";
+}
+
+/// TOML of a clamped 0.1 m square sheet (4 x 4 squares, one region "all")
+/// on model @p model whose one section has the keys @p section and a 1 mm
+/// thickness; explicit to 10 us.
+inline std::string sectionSheet(const std::string& section,
+                                const std::string& model = "large_deflection") {
+  return "model = \"" + model + "\"\n[mesh]\nLx = 0.1\nnx = 4\n[[section]]\nregion = \"all\"\n" +
+         section +
+         "thickness = 1.0e-3\n[time]\nintegrator = \"explicit\"\nt_end = 1.0e-5\n"
+         "[[fixed]]\nnodes = \"edges\"\n";
 }
 
 /// TOML of a square of side @p L with nx x nx squares and the isotropic

@@ -27,17 +27,11 @@ std::string errorOf(const std::string& text) {
   return test::buildError(text, "micro.toml");
 }
 
-void expectHas(const std::string& message, const std::vector<std::string>& parts) {
-  ASSERT_FALSE(message.empty()) << "accepted";
-  for (const auto& p : parts)
-    EXPECT_NE(message.find(p), std::string::npos) << "no '" << p << "' in: " << message;
-}
-
 } // namespace
 
 TEST(MalformedMicroInertia, ExplicitSchemeRefusesMicroInertia) {
-  expectHas(errorOf(dispersiveCase("", "integrator = \"explicit\"\n")),
-            {"micro.toml", "time.integrator", "section[0]", "micro-inertia", "newmark"});
+  test::expectHas(errorOf(dispersiveCase("", "integrator = \"explicit\"\n")),
+                  {"micro.toml", "time.integrator", "section[0]", "micro-inertia", "newmark"});
   // Without it the explicit run is accepted and steps.
   const Model m = test::modelFromText(
       dispersiveCase("", "integrator = \"explicit\"\n", "micro_inertia = false\n"), "micro.toml");
@@ -56,8 +50,8 @@ TEST(MalformedMicroInertia, ExplicitSchemeRefusesMicroInertia) {
 }
 
 TEST(MalformedMicroInertia, LargeDeflectionModelRefusesMicroInertia) {
-  expectHas(errorOf(dispersiveCase("model = \"large_deflection\"\n", "")),
-            {"micro.toml", "section[0]", "micro-inertia", "micro_inertia = false"});
+  test::expectHas(errorOf(dispersiveCase("model = \"large_deflection\"\n", "")),
+                  {"micro.toml", "section[0]", "micro-inertia", "micro_inertia = false"});
   EXPECT_EQ(
       errorOf(dispersiveCase("model = \"large_deflection\"\n", "", "micro_inertia = false\n")), "");
 }
