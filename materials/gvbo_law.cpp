@@ -46,6 +46,18 @@ struct StepConstants {
   Vector6 W0, h, V;
 };
 
+/// @return x^-n; by multiplication when n is a whole number up to 8 (Table 1's
+/// k4 = 4: pow was a tenth of a membrane step), else std::pow.
+double negativePower(double x, double n) {
+  if (n == std::floor(n) && n >= 1 && n <= 8) {
+    double r = x;
+    for (int i = 1; i < static_cast<int>(n); ++i)
+      r *= x;
+    return 1 / r;
+  }
+  return std::pow(x, -n);
+}
+
 Scalars evaluate(const StepConstants& sc, double Gamma) {
   const GvboParameters& p = sc.law->parameters();
   Scalars s;
@@ -53,7 +65,7 @@ Scalars evaluate(const StepConstants& sc, double Gamma) {
   const double psi = p.a1 + (p.a2 - p.a1) * ex;
   s.c = psi / sc.E;
   s.dc = -p.a3 * (p.a2 - p.a1) * ex / sc.E;
-  s.k = p.k1 * std::pow(1 + Gamma / sc.k2b, -p.k4);
+  s.k = p.k1 * negativePower(1 + Gamma / sc.k2b, p.k4);
   s.phi = sc.dt / (sc.E * s.k);
   s.dphi = s.phi * p.k4 / (sc.k2b + Gamma); // -phi k'/k
   const double q = Gamma * s.phi, dq = s.phi + Gamma * s.dphi;
@@ -130,6 +142,17 @@ GvboLaw::GvboLaw(const GvboParameters& p) : p_(p) {
 void GvboLaw::initState(double* state) const {
   std::fill(state, state + GvboState::kSize, 0.0);
   state[GvboState::kA] = p_.A0;
+}
+
+Vector6 GvboLaw::elasticStrain(const Vector6& sigma, double J) const {
+  const GvboModuli m = gvboModuli(p_, J);
+  const double K = m.lambda + 2 * m.G / 3, mean = (sigma[0] + sigma[1] + sigma[2]) / 3;
+  Vector6 eps;
+  for (int i = 0; i < 3; ++i) {
+    eps[i] = (sigma[i] - mean) / (2 * m.G) + mean / (3 * K);
+    eps[3 + i] = sigma[3 + i] / m.G;
+  }
+  return eps;
 }
 
 Stiffness GvboLaw::elasticStiffness(double J) const {

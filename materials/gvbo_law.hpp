@@ -65,6 +65,9 @@ public:
   int stateSize() const override { return GvboState::kSize; }
   void initState(double* state) const override;
   Stiffness elasticStiffness(double J = 1.0) const override;
+  /// Isotropic compliance at the moduli of J (eqs. 13-16): the deviator over
+  /// 2G (engineering shear over G), the mean stress over 3K, K = lambda + 2G/3.
+  Vector6 elasticStrain(const Vector6& sigma, double J) const override;
   void update(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
               Matrix6* tangent) const override;
   /// As update(), also reporting Gamma, k, psi, E and iterations in @p info.

@@ -33,17 +33,23 @@ Vector6 smallStrain(const Eigen::Matrix3d& F) {
   return e;
 }
 
-FiniteIncrement finiteIncrement(const Eigen::Matrix3d& F_n, const Eigen::Matrix3d& F) {
-  FiniteIncrement inc;
-  inc.J_n = F_n.determinant();
-  inc.J = F.determinant();
-  LAMINA_CHECK(inc.J_n > 0 && inc.J > 0, "deformation gradient with det F <= 0");
+Vector6 rotationFreeIncrement(const Eigen::Matrix3d& F_n, const Eigen::Matrix3d& F) {
+  LAMINA_CHECK(F_n.determinant() > 0 && F.determinant() > 0,
+               "deformation gradient with det F <= 0");
   const Eigen::Matrix3d Fm = 0.5 * (F_n + F);
   const Eigen::Matrix3d Ldt = (F - F_n) * Fm.inverse();
   const Eigen::Matrix3d Dm = 0.5 * (Ldt + Ldt.transpose());
   const Eigen::Matrix3d Rm = polarRotation(Fm);
-  inc.deps = fromMatrix(Rm.transpose() * Dm * Rm);
-  inc.deps.tail<3>() *= 2; // engineering shear
+  Vector6 deps = fromMatrix(Rm.transpose() * Dm * Rm);
+  deps.tail<3>() *= 2; // engineering shear
+  return deps;
+}
+
+FiniteIncrement finiteIncrement(const Eigen::Matrix3d& F_n, const Eigen::Matrix3d& F) {
+  FiniteIncrement inc;
+  inc.J_n = F_n.determinant();
+  inc.J = F.determinant();
+  inc.deps = rotationFreeIncrement(F_n, F);
   inc.R = polarRotation(F);
   return inc;
 }

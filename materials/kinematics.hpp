@@ -33,6 +33,10 @@ struct FiniteIncrement {
 /// @return the rotation-free increment of the step F_n -> F (both det > 0)
 FiniteIncrement finiteIncrement(const Eigen::Matrix3d& F_n, const Eigen::Matrix3d& F);
 
+/// @return finiteIncrement(F_n, F).deps alone (no rotation at t_{n+1}: one
+/// polar decomposition instead of two)
+Vector6 rotationFreeIncrement(const Eigen::Matrix3d& F_n, const Eigen::Matrix3d& F);
+
 /// @return R s R^T for a symmetric tensor s in lamina order (tensor components)
 Vector6 rotateTensor(const Eigen::Matrix3d& R, const Vector6& s);
 

@@ -42,7 +42,11 @@ std::string lawKindNames() {
 }
 
 double ConstitutiveLaw::storedEnergy(const Vector6& sigma, const double*, double J) const {
-  return 0.5 * sigma.dot(elasticStiffness(J).matrix().ldlt().solve(sigma));
+  return 0.5 * sigma.dot(elasticStrain(sigma, J));
+}
+
+Vector6 ConstitutiveLaw::elasticStrain(const Vector6& sigma, double J) const {
+  return elasticStiffness(J).matrix().ldlt().solve(sigma);
 }
 
 LinearElasticLaw::LinearElasticLaw(LawKind kind, const Stiffness& C) : kind_(kind), C_(C) {

@@ -87,6 +87,12 @@ public:
   /// the law's state at that stress (stateSize() doubles; may be null for a
   /// law without state), @p J its volume ratio.
   virtual double storedEnergy(const Vector6& sigma, const double* state, double J) const;
+  /// @return C(J)^-1 @p sigma, the engineering strain the instantaneous
+  /// stiffness gives to the stress @p sigma at volume ratio @p J (the elastic
+  /// part of a strain increment: d eps - elasticStrain(d sigma) is inelastic).
+  /// Default: an LDL^T solve with elasticStiffness(J); a law with a closed
+  /// form (isotropic GVBO) overrides it.
+  virtual Vector6 elasticStrain(const Vector6& sigma, double J) const;
 };
 
 /// Shared handle to an immutable law.

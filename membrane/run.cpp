@@ -50,6 +50,12 @@ public:
     bool stopped = false;
     const long ce = model_.output.checkpoint_every;
     for (long s = sim.steps() + 1; more(s) && !failure && !interrupted && !stopped; ++s) {
+      if (adaptive_ && static_cast<double>(s) > kMaxSteps)
+        throw Error("the explicit step shrank with the law's stiffness so far that t_end needs "
+                    "more than " + core::formatShort(kMaxSteps) + " steps (t = " +
+                        core::formatShort(sim.time()) + " s, dt = " +
+                        core::formatShort(sim.integrator().timeStep()) + " s)",
+                    {"", 0, "time.t_end"});
       try {
         sim.step();
         reached_end_ = endReached(sim);

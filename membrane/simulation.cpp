@@ -131,6 +131,8 @@ void Simulation::save(History& h) const {
   for (auto& [key, value] : own)
     h[kIntegrator + key] = std::move(value);
   structure_->saveHistory(h);
+  if (structure_->hasHistory()) // the adapted stable step (the summary reports it)
+    h["structure/stable_dt"] = Eigen::VectorXd::Constant(1, stable_dt_);
 }
 
 namespace {
@@ -202,6 +204,11 @@ void Simulation::restore(const History& h, long last_step) {
   works_ = Works{w[0], w[1], w[2], w[3], w[4], w[5]};
   restoreFailure(h);
   structure_->restoreHistory(h);
+  if (structure_->hasHistory()) {
+    stable_dt_ = historyEntry(h, "structure/stable_dt", 1)[0];
+    if (!(stable_dt_ > 0))
+      throw Error("checkpoint entry 'structure/stable_dt' must be > 0");
+  }
 }
 
 void Simulation::restoreIntegrator(const History& h) {

@@ -218,6 +218,8 @@ void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
     }
     if (!s.prestress.allFinite())
       r.fail("prestress", "must be finite");
+    if (!s.isLinear())
+      r.fail("prestress", "needs an elastic law: " + s.material + " starts unstressed");
   }
   s.tension_only = r.getBool("tension_only", false);
   s.failure_strain = r.getDouble("failure_strain", s.failure_strain);

@@ -183,6 +183,8 @@ void LargeDeflection::restoreHistory(const History& h) {
   }
   const Eigen::VectorXd& v =
       historyEntry(h, kHistoryKey, static_cast<Eigen::Index>(history_.size()));
+  if (!v.allFinite())
+    throw Error(std::string("checkpoint entry '") + kHistoryKey + "' holds a non-finite value");
   for (int e = 0; e < model_.mesh.numElements(); ++e) {
     const long o = history_offset_[e];
     if (o < 0)
@@ -302,11 +304,23 @@ double LargeDeflection::currentStableStep() const {
     return stableStep();
   const size_t nr = model_.sections.size();
   std::vector<double> jmin(nr, std::numeric_limits<double>::infinity()), jmax(nr, 0.0);
+  std::vector<double> amp(nr, 1.0), tension(nr, 0.0);
   for (int e = 0; e < model_.mesh.numElements(); ++e)
     if (const double* b = history(e)) {
       const auto r = static_cast<size_t>(model_.mesh.region_of[e]);
-      jmin[r] = std::min(jmin[r], b[LawPoint::kJ]);
-      jmax[r] = std::max(jmax[r], b[LawPoint::kJ]);
+      const double J = b[LawPoint::kJ];
+      jmin[r] = std::min(jmin[r], J);
+      jmax[r] = std::max(jmax[r], J);
+      // Per reference length and mass the stiffness of the Cauchy moduli is
+      // J C / lambda_min^2 (lambda_min the least in-plane stretch), and a
+      // tension s1 adds J s1 / lambda_min^2 (the string's wave).
+      const Eigen::Map<const Eigen::Matrix<double, 3, 2>> F(b + LawPoint::kF);
+      const Eigen::Matrix2d C = F.transpose() * F;
+      const double l2 = principal2(C(0, 0), C(1, 1), C(0, 1))[1];
+      const double s1 =
+          principal2(b[LawPoint::kSigma], b[LawPoint::kSigma + 1], b[LawPoint::kSigma + 2])[0];
+      amp[r] = std::max(amp[r], J / l2);
+      tension[r] = std::max(tension[r], J * std::max(s1, 0.0) / l2);
     }
   std::vector<double> speed;
   for (size_t r = 0; r < nr; ++r) {
@@ -318,16 +332,16 @@ double LargeDeflection::currentStableStep() const {
       continue;
     }
     // The instantaneous stiffness is the fastest the law can respond (any
-    // rate); it changes with J. Reference mass and length: the stress per
-    // reference area grows with J, hence the factor max(J, 1).
+    // rate); it changes with J. Reference mass and length: scaled by the
+    // largest J / lambda_min^2 of the region, plus its largest tension term.
     double modulus = 0;
     const double lo = std::min(jmin[r], 1.0), hi = std::max(jmax[r], 1.0);
     for (int k = 0; k <= 8; ++k) {
       const double J = lo + (hi - lo) * k / 8.0;
       const Eigen::Matrix3d c = planeStressStiffness(s.law->elasticStiffness(J).matrix());
-      modulus = std::max(modulus, std::max(J, 1.0) * maxWaveModulus(c, StrainKind::PlaneStress));
+      modulus = std::max(modulus, maxWaveModulus(c, StrainKind::PlaneStress));
     }
-    speed.push_back(std::sqrt(modulus / s.density));
+    speed.push_back(std::sqrt((amp[r] * modulus + tension[r]) / s.density));
   }
   double dt = std::numeric_limits<double>::infinity();
   for (size_t r = 0; r < nr; ++r)

@@ -40,7 +40,9 @@ public:
   double stableStep() const override;
   /// The stable step at the committed history: a nonlinear region's
   /// instantaneous stiffness elasticStiffness(J) taken at 9 values of J across
-  /// the range of J of its elements (the largest wave modulus over them)
+  /// the range of J of its elements (the largest wave modulus over them),
+  /// times the region's largest J / lambda_min^2, plus its largest tension
+  /// J s1 / lambda_min^2 (reference length and mass)
   double currentStableStep() const override;
   bool hasHistory() const override { return !history_offset_.empty(); }
   void beginStep(double t1, double dt) override {

@@ -78,11 +78,11 @@ void solveWrinkled(const materials::ConstitutiveLaw& law, materials::PlaneStress
   for (int pass = 0; pass < 2; ++pass) {
     ps.J2 = J2 * wrinkledArea(w.eps_w);
     w.r = materials::planeStressUpdate(law, ps, state_n, state, false);
+    w.J2 = ps.J2; // the area ratio the law was stepped with
     w.eps_w.setZero();
     for (int k = 0; k < ps.n_free; ++k)
       w.eps_w -= w.r.amplitude[static_cast<size_t>(k)] * ps.free_dir[static_cast<size_t>(k)];
   }
-  w.J2 = J2 * wrinkledArea(w.eps_w);
 }
 
 /// Solves the step, taut first; with @p tension_only, wrinkled or slack when
@@ -134,15 +134,16 @@ Eigen::Vector3d stepLawPoint(const materials::ConstitutiveLaw& law, const Matrix
                              bool tension_only, double dt, const double* block_n, double* block) {
   using P = LawPoint;
   const Matrix32 F_n = Eigen::Map<const Matrix32>(block_n + P::kF);
-  const materials::FiniteIncrement inc = materials::finiteIncrement(completed(F_n), completed(F));
+  const Eigen::Matrix3d F3 = completed(F);
+  const Vector6 deps_geo = materials::rotationFreeIncrement(completed(F_n), F3);
   materials::PlaneStressStep ps;
   ps.eps_n = Eigen::Map<const Vector6>(block_n + P::kEps);
   const Eigen::Map<const Eigen::Vector3d> eps_w_n(block_n + P::kWrinkle);
   for (int i = 0; i < 3; ++i)
-    ps.deps_p[i] = inc.deps[kPlane[i]] + eps_w_n[i]; // the previous wrinkles released
+    ps.deps_p[i] = deps_geo[kPlane[i]] + eps_w_n[i]; // the previous wrinkles released
   ps.lambda3_n = block_n[P::kLambda3];
   ps.J2_n = block_n[P::kJ] / block_n[P::kLambda3]; // the law's, wrinkles removed
-  ps.J2 = inc.J;
+  ps.J2 = F3.determinant();
   ps.dt = dt;
   const WrinkledStep w = solve(law, ps, tension_only, block_n + P::kLaw, block + P::kLaw);
   LAMINA_CHECK(w.r.sigma.allFinite() && std::isfinite(w.r.lambda3) && w.r.lambda3 > 0,
@@ -155,8 +156,7 @@ Eigen::Vector3d stepLawPoint(const materials::ConstitutiveLaw& law, const Matrix
     sigma_n[kPlane[i]] = block_n[P::kSigma + i];
   const double work = 0.5 * (J_n * sigma_n + J * w.r.sigma).dot(deps);
   const double psi = J * law.storedEnergy(w.r.sigma, block + P::kLaw, J);
-  const double inelastic =
-      equivalentDeviatoric(deps - law.elasticStiffness(J).matrix().ldlt().solve(w.r.sigma - sigma_n));
+  const double inelastic = equivalentDeviatoric(deps - law.elasticStrain(w.r.sigma - sigma_n, J));
   // The new history.
   Eigen::Map<Matrix32>(block + P::kF) = F;
   Eigen::Map<Vector6>(block + P::kEps) = w.r.eps;

@@ -125,31 +125,32 @@ TEST(LawSection, WrinkledElementCarriesTheLawsUniaxialStress) {
 }
 
 // At a very high rate (1e5 /s to 1 %) the overstress has no time to relax:
-// GVBO responds with its instantaneous moduli (E0, nu0 of Table 5), so its
-// stress equals that of the elastic section with E0, nu0 within 2 % (the
-// issue's bound; the two also differ by the strain measure, Green-Lagrange
-// against the midpoint-integrated one, O(e) = 1 % at e = 1 %).
-TEST(LawSection, AtAVeryHighRateGvboIsTheElasticSheetAtItsInstantaneousModuli) {
-  const double rate = 1e5, to = 0.01;
-  const std::string time = "dt = 1.0e-9\nt_end = " + core::formatExact(to / rate) + "\n";
-  Model g = polyureaSquare(1, time);
+// GVBO responds with its instantaneous moduli (E0, nu0 of Table 5). An
+// element stretched along x (F = diag(1 + e, 1), membrane plane stress) by a
+// hypoelastic law at those moduli has sigma_xx = E0 / (1 - nu0^2) m exactly,
+// m = sum 2 d lambda / (lambda_n + lambda_{n+1}) the midpoint strain of the
+// kinematics (J > 1 here, where the moduli of eqs. 13-16 stay at their
+// initial values). The bound is 2 %; GVBO relaxes by 9e-7 of the
+// stress in these 1e-7 s (measured), so 1e-4 still tells a relaxation of the
+// elastic response from an error in the moduli or the kinematics.
+TEST(LawSection, AtAVeryHighRateGvboHasItsInstantaneousModuli) {
+  const double rate = 1e5, to = 0.01, dt = 1e-9, E0 = 278e6, nu0 = 0.491;
+  const int steps = static_cast<int>(std::lround(to / rate / dt));
+  Model g = polyureaSquare(1, "dt = 1.0e-9\nt_end = 1.0e-7\n");
   g.constraints = {uniformStretch(g.mesh, rate, 0.0)};
-  Model el = polyureaSquare(1, time);
-  el.sections[0].law = nullptr; // the elastic section at E0, nu0
-  el.constraints = g.constraints;
-  Simulation sg(g), se(el);
-  while (sg.time() < to / rate - 1e-15) {
-    sg.step();
-    se.step();
+  Simulation sim(g);
+  const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());
+  double m = 0;
+  for (int n = 1; n <= steps; ++n) {
+    sim.step();
+    const double l0 = 1 + rate * (n - 1) * dt, l1 = 1 + rate * n * dt;
+    m += 2 * (l1 - l0) / (l0 + l1);
   }
-  const auto& lg = dynamic_cast<const LargeDeflection&>(sg.structure());
-  const auto& le = dynamic_cast<const LargeDeflection&>(se.structure());
+  const double expect = E0 / (1 - nu0 * nu0) * m;
   for (int e = 0; e < g.mesh.numElements(); ++e) {
-    const double s_g = principal2(lg.history(e)[LawPoint::kSigma],
-                                  lg.history(e)[LawPoint::kSigma + 1],
-                                  lg.history(e)[LawPoint::kSigma + 2])[0];
-    const double s_e = principalCauchy(le.stress(e, se.u()))[0];
-    EXPECT_NEAR(s_g / s_e, 1.0, 0.02) << "element " << e << ": " << s_g << " vs " << s_e;
+    const double s = ld.history(e)[LawPoint::kSigma];
+    EXPECT_LT(s, expect) << "relaxation only lowers the stress";
+    EXPECT_NEAR(s / expect, 1.0, 1e-4) << "element " << e << ": " << s << " vs " << expect;
   }
 }
 
@@ -159,7 +160,9 @@ TEST(LawSection, AtAVeryHighRateGvboIsTheElasticSheetAtItsInstantaneousModuli) {
 // `materials drive --path uniaxial-stress` at the same rate (GVBO has no
 // linear relaxed modulus: at 1e-3 /s its secant falls from 240 to 40 MPa
 // between 0.1 % and 3 %, so the slow limit is the law's own slow curve).
-// 2 % is the bound; the dynamic transient is ~1e-5 of the force.
+// The bound is 2 %; measured 6.5e-3 at the first point (0.3 %, in
+// the knee, with the start's dynamic transient still ringing), 2e-5 to
+// 2.4e-4 after it: 1e-2.
 TEST(LawSection, SlowlyPulledSheetFollowsTheLawsSlowCurve) {
   const double rate = 1e-3, to = 0.03, h0 = 1e-3;
   Model m = polyureaSquare(2, "safety = 0.5\nt_end = " + core::formatExact(to / rate) + "\n");
@@ -195,16 +198,15 @@ TEST(LawSection, SlowlyPulledSheetFollowsTheLawsSlowCurve) {
   while (next < rows.size()) {
     while (sim.time() < rows[next].t)
       sim.step();
-    // the reaction at the pulled edge, interpolated back to the row's time is
-    // not needed: the step is ~1e-3 s against 1 s between rows (0.1 % strain
-    // per 3 rows), so compare with the row nearest in time
+    // the step (~1e-3 s) overshoots the row's time: the expected force is
+    // carried to the step's time along the drive's slope
     const double t = sim.time();
     const auto& r = rows[next];
     const double force = sim.reactionSums()[1].x();
     const double expect = h0 * r.sigma[0] * (1 + r.eps[1]) * (1 + r.eps[2]);
     const double slope = (rows[next].sigma[0] - rows[next - 1].sigma[0]) /
                          (rows[next].t - rows[next - 1].t) * h0;
-    EXPECT_NEAR(force, expect + slope * (t - r.t), 0.02 * expect) << "t = " << t;
+    EXPECT_NEAR(force, expect + slope * (t - r.t), 1e-2 * expect) << "t = " << t;
     next += 30;
   }
 }
