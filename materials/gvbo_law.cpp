@@ -95,9 +95,17 @@ double solveGamma(const StepConstants& sc, double guess, int& iterations) {
   Scalars s0 = evaluate(sc, 0.0);
   if (s0.normW == 0)
     return 0;
-  // bracket: grow from the elastic overstress until r > 0
+  // bracket: from the guess (the last step's Gamma: at a steady rate it is
+  // near the root, and one evaluation brackets it), else from the elastic
+  // overstress; grow until r > 0
   hi = std::max(kSqrt23 * s0.normW / s0.D, 1e-300);
-  for (int i = 0; evaluate(sc, hi).r <= 0; ++i) {
+  if (guess > 0 && std::isfinite(guess)) {
+    if (evaluate(sc, guess).r > 0)
+      hi = guess;
+    else
+      lo = hi = guess;
+  }
+  for (int i = 0; hi == lo || evaluate(sc, hi).r <= 0; ++i) {
     LAMINA_CHECK(i < 400, "GVBO: cannot bracket the overstress (Gamma)");
     lo = hi;
     hi *= 2;
