@@ -10,7 +10,7 @@ Usage:
       --path shear --out curves.png [--title TEXT]
 
 The driven pair is plotted: shear -> (eps_xy, sig_xy); uniaxial-strain and
-uniaxial-stress -> (eps_xx, sig_xx); confined -> (-eps_xx, -sig_xx), i.e.
+uniaxial-stress and biaxial-stress -> (eps_xx, sig_xx); confined -> (-eps_xx, -sig_xx), i.e.
 compression positive. Stress in MPa."""
 import argparse
 import csv
@@ -45,7 +45,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("name", nargs="?")
     ap.add_argument("--path", default="shear",
-                    choices=["uniaxial-stress", "uniaxial-strain", "shear", "confined"])
+                    choices=["uniaxial-stress", "uniaxial-strain", "shear", "confined",
+                             "biaxial-stress"])
     ap.add_argument("--to", type=float, default=0.5)
     ap.add_argument("--rates", default="1e-3,1,1e3,1e5,1e6")
     ap.add_argument("--steps", type=int, default=200)
