@@ -172,6 +172,18 @@ TEST(Restart, LargeDeflectionExplicitContinuesBitIdentically) {
 
 TEST(Restart, GvboSectionsContinueBitIdentically) {
   expectRestartIdentical(kGvbo, 17, "restart-gvbo");
+  // The stop falls after a change of step (the sheet's tension shortens it):
+  // the checkpoint holds a step base k > 0, which the restart must continue.
+  const Model model = test::modelFromText(kGvbo, "restart-gvbo.toml");
+  const test::Folder dir("restart-gvbo-base");
+  RunOptions o;
+  o.out_dir = dir.path;
+  o.quiet = true;
+  o.stop_at_step = 17;
+  runModel(model, o);
+  const Checkpoint c = readCheckpoint(checkpointPath(dir.path));
+  const Eigen::VectorXd& step = c.data.at("integrator/step");
+  EXPECT_GT(step[2], 0.0) << "no change of step before the stop";
 }
 
 // kill -9 after a periodic checkpoint: the tables already hold rows written
