@@ -287,14 +287,17 @@ double LargeDeflection::strainEnergy(const Eigen::VectorXd& u) const {
   return U;
 }
 
+double LargeDeflection::restSpeed(size_t r) const {
+  // A tension T adds T / (rho h) to c^2 (the string's wave); take its largest principal value.
+  const Eigen::Vector2d t = principal2(s0_[r][0], s0_[r][1], s0_[r][2]);
+  const double modulus = maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(t[0], 0.0);
+  return std::sqrt(modulus / model_.sections[r].density);
+}
+
 double LargeDeflection::stableStep() const {
   std::vector<double> speed;
   for (size_t r = 0; r < model_.sections.size(); ++r) {
-    const auto& s = model_.sections[r];
-    // A tension T adds T / (rho h) to c^2 (the string's wave); take its largest principal value.
-    const Eigen::Vector2d t = principal2(s0_[r][0], s0_[r][1], s0_[r][2]);
-    const double modulus = maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(t[0], 0.0);
-    speed.push_back(std::sqrt(modulus / s.density));
+    speed.push_back(restSpeed(r));
   }
   return criticalStep(model_.mesh, speed);
 }
@@ -326,9 +329,7 @@ double LargeDeflection::currentStableStep() const {
   for (size_t r = 0; r < nr; ++r) {
     const Section& s = model_.sections[r];
     if (s.isLinear()) {
-      const Eigen::Vector2d t = principal2(s0_[r][0], s0_[r][1], s0_[r][2]);
-      speed.push_back(std::sqrt(
-          (maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(t[0], 0.0)) / s.density));
+      speed.push_back(restSpeed(r));
       continue;
     }
     // The instantaneous stiffness is the fastest the law can respond (any

@@ -111,6 +111,8 @@ private:
   std::vector<double> min_length_;    // per region: min element length 2 A / longest edge (m)
   /// The force of a nonlinear element at F (trial history), into @p out (9).
   void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
+  /// @return the fastest wave speed of region @p r at rest, its pre-tension included (m/s)
+  double restSpeed(size_t r) const;
   /// @return the principal Cauchy stresses of element @p e in state @p st (its law's with history)
   Eigen::Vector2d cauchyPrincipal(int e, const FabricStress& st) const;
   /// Builds the history blocks of the nonlinear sections.
