@@ -102,7 +102,9 @@ TEST(PolyureaImpactCase, MaterialSetSwitchesTheLaw) {
 // front (about 600 m/s at the rest moduli) needs 200 us to run the 119 mm
 // from the face to the rim, the transverse front longer. So the momentum
 // (M + m) V stays to round-off (bound 1e-12 of p0: summing ~3000 terms;
-// measured 1.5e-16). Energy: T (from M and v here) + U + the law's
+// measured 1.5e-16): a check of the projectile's set-up (patch, rigid set,
+// constraints), not of the law, whose element forces sum to zero whatever
+// it is. Energy: T (from M and v here) + U + the law's
 // dissipation = E0 within 1e-3 of E0 (central differences are second order
 // in dt; measured 3.7e-4 by 100 us), and the GVBO sheet has dissipated
 // energy by then (> 1 % of E0; measured 16.0 of 72.2 J).
