@@ -209,7 +209,7 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
                  "single from tol 1e-4 up the operator and the CG vectors are float too")
       ->check(CLI::IsMember(namesOf(kPrecisions)));
   app.add_flag("--quiet", cli.quiet, "no progress line");
-  // nonlinear: the cell under a strain-rate history (docs/homogenize.md)
+  // nonlinear: the cell under a strain-rate history (docs/homogenize-nonlinear.md)
   app.add_option("--path", names.path,
                  "nonlinear run: uniaxial-strain | shear | confined | uniaxial-stress | "
                  "biaxial-stress (with "
@@ -245,7 +245,7 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   addReducedOrderOptions(app, cli, names);
 }
 
-/// Declares the options of a reduced-order cell (docs/homogenize.md,
+/// Declares the options of a reduced-order cell (docs/homogenize-nonlinear.md,
 /// "Reduced-order cells") on @p app.
 void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_flag("--reduced-order", cli.reduced_order,
@@ -382,7 +382,7 @@ void checkNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec) {
 }
 
 /// Refuses, before anything large is allocated, a grid of @p n voxels that
-/// does not fit in memory (docs/homogenize.md, Memory).
+/// does not fit in memory (docs/homogenize-solver.md, Memory).
 void checkMemory(const Cli& cli, const lamina::micro::CellSpec& spec, const std::array<int, 3>& n,
                  const lamina::homogenize::MpiSession& mpi) {
   // per voxel three CG vectors (72 bytes in double, 36 in single precision),

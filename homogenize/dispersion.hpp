@@ -4,7 +4,7 @@
 /// of the GVBO chapter, section 4.3 (eqs. 35, 38, 39), from the displacement
 /// fluctuations of the six load cases of the cell problem.
 ///
-/// Method (docs/homogenize.md, "Micro-inertia"):
+/// Method (docs/homogenize-solver.md, "Micro-inertia"):
 /// - H_k, the periodic displacement fluctuation of unit load case k (lamina
 ///   order, engineering shear), is the nodal solution u of the cell problem
 ///   (cell_operator.hpp), handed over by Homogenizer::setDisplacementSink.

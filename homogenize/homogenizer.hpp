@@ -3,7 +3,7 @@
 /// @brief Effective stiffness of a periodic voxel cell: six load cases of the
 /// cell problem solved by FFT-preconditioned conjugate gradients.
 ///
-/// Method (docs/homogenize.md): for each unit macroscopic strain E_k (lamina
+/// Method (docs/homogenize-solver.md): for each unit macroscopic strain E_k (lamina
 /// order, engineering shear) find the periodic nodal displacement u with
 /// D^T C (E_k + D u) = 0 (cell_operator.hpp), by conjugate gradients
 /// preconditioned with the reference-medium Green operator

@@ -5,7 +5,7 @@
 /// the consistent tangent, each Newton system solved by conjugate gradients
 /// preconditioned with the FFT Green operator of the linear solver.
 ///
-/// Method (docs/homogenize.md, "Nonlinear homogenization"). Small strain.
+/// Method (docs/homogenize-nonlinear.md, "Nonlinear homogenization"). Small strain.
 /// Unknowns of step n+1: the periodic nodal displacement u and the
 /// stress-controlled macroscopic strains E_f. They make stationary the
 /// incremental potential sum_v w_v(E + D u) - N Sigma_f . E_f, whose

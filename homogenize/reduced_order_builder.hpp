@@ -6,7 +6,7 @@
 /// its plain phase map: what `homogenize --reduced-order` writes into the
 /// library and the reduced-order law evaluates at every material point.
 ///
-/// Method (run(); docs/homogenize.md, "Reduced-order cells"):
+/// Method (run(); docs/homogenize-nonlinear.md, "Reduced-order cells"):
 /// 1. Every phase's reference stiffness L0 = its law's elasticStiffness(1.0).
 ///    The six macro load cases of the linear solver (Homogenizer, stress
 ///    estimate, double precision) give the displacements H_k; their voxel

@@ -2,7 +2,7 @@
 /// @file library.hpp
 /// @brief The materials library: one TOML text file of Material entries.
 ///
-/// Format (see docs/library.md): a `[lamina]` header table with
+/// Format (see docs/materials.md, "The library file"): a `[lamina]` header table with
 /// `format = "lamina-materials-library"` and `version = 1`, then one table
 /// `[materials."NAME"]` per entry with `kind`, `density`, `C` (6 rows of 6,
 /// Pa, lamina order, 17 significant digits), optional `thickness`, `plies`,

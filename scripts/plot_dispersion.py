@@ -14,7 +14,7 @@ problem v(0, t) = V(t) of a right-going wave, v(x, w) = V(w) exp(-i k(w) x):
     cos kL = cos(w a) cos(w b) - (Z1/Z2 + Z2/Z1)/2 sin(w a) sin(w b);
   - the micro-inertia model: w^2 (rho + zeta^2 D k^2) = C k^2 with
     zeta^2 D = phi1^2 phi2^2 M_h^2 (M1 r1 - M2 r2)^2 L^2 / (12 M1^2 M2^2 rho),
-    the bilayer's D_lin (docs/homogenize.md), C = M_h.
+    the bilayer's D_lin (docs/homogenize-solver.md), C = M_h.
 Prints the relative L2 distance of each run to the exact laminate at each
 probe. Plane strain P waves: M = lambda + 2 mu of each layer.
 """

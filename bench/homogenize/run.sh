@@ -12,7 +12,7 @@
 #      BENCH_QUICK=1 (64^3 only), BENCH_OUT (default BUILD/bench-homogenize),
 #      BENCH_BASELINE, BENCH_PAIRS (3), BENCH_PAIR_THREADS (2), BENCH_OLD_TOL (1e-3), BENCH_NEW_TOL
 #      (1e-3: each the loosest decade tolerance with C within 5e-6 of max|C|
-#      of its own tol 1e-8 answer, as FANS's 1e-2 in issue 13).
+#      of its own tol 1e-8 answer, as FANS's 1e-2 in the FANS comparison).
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 bench_setup bench-homogenize "${1:-build}"
@@ -141,7 +141,7 @@ fi
 
 if [ -n "${BENCH_BASELINE:-}" ]; then
   PAIRS="${BENCH_PAIRS:-3}" OLD_TOL="${BENCH_OLD_TOL:-1e-3}" NEW_TOL="${BENCH_NEW_TOL:-1e-3}"
-  PAIR_THREADS="${BENCH_PAIR_THREADS:-2}" # 2: the issue's configuration; 1: user CPU is the work
+  PAIR_THREADS="${BENCH_PAIR_THREADS:-2}" # 2: the FANS comparison's configuration; 1: user CPU is the work
   plain="$OUT/sphere-plain.toml" # the plain effective C: no size, so no dispersion tensor
   grep -v '^size' cases/cells/sphere.toml > "$plain"
   PAIRS_OUT="$OUT/pairs.txt"
@@ -156,7 +156,7 @@ if [ -n "${BENCH_BASELINE:-}" ]; then
   pair "$BENCH_BASELINE" 1 warm-old # planning and wisdom, not counted
   pair "$BIN" 1 warm-new
   for _ in $(seq "$PAIRS"); do
-    pair "$BENCH_BASELINE" "$OLD_TOL" old-equal # ed9714b at 1e-3: the issue's 7.5 s idle
+    pair "$BENCH_BASELINE" "$OLD_TOL" old-equal # ed9714b at 1e-3: the comparison's 7.5 s idle
     pair "$BIN" "$NEW_TOL" new-equal
     pair "$BENCH_BASELINE" 1e-5 old-1e-5
     pair "$BIN" 1e-5 new-1e-5
@@ -168,7 +168,7 @@ runs = collections.defaultdict(list)
 for line in open(sys.argv[1]):
     label, wall, user = line.split()
     runs[label].append((float(wall), float(user)))
-# FANS figures of issue 13 (same kind of machine): 27 s at its equal-accuracy
+# FANS figures of the FANS comparison (same kind of machine): 27 s at its equal-accuracy
 # tol 1e-2, 74 s at 1e-8; lamina ed9714b on the idle machine: 7.5 s at 1e-3,
 # 14.0 s at 1e-5
 med = lambda label, i: statistics.median(r[i] for r in runs[label])

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Membrane benchmark (issues 4 and 9): structured N x N squares (2 triangles
+# Membrane benchmark (Newmark and explicit steps): structured N x N squares (2 triangles
 # each), isotropic E = 1 GPa, nu = 0.3, rho = 1000, h = 1 mm, fixed edges,
 # centre strike at 1 m/s, tau = 0.4 h_el / c_S, STEPS steps (default 200).
 # 1. `membrane run` end to end: assembly, set-up and per-step times, CG

@@ -236,7 +236,7 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
   }
 }
 
-/// [[drag]] (issue 5): on surface regions.
+/// [[drag]] (aerodynamic drag): on surface regions.
 void readDrags(const core::TableReader& root, Model& model) {
   const Mesh& mesh = model.mesh;
   const int n = mesh.numNodes();

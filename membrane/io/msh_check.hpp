@@ -6,7 +6,7 @@
 /// Debian's gmsh 4.8 trusts the file: an element naming a node tag that
 /// does not fit an int (e.g. a mutated byte in `$Elements`) makes
 /// `GModel::_readMSH4` index its node cache out of bounds and die with
-/// SIGSEGV (found by fuzz/msh_fuzzer.cpp, issue 14). This check reads the
+/// SIGSEGV (found by fuzz/msh_fuzzer.cpp). This check reads the
 /// whole file as the MSH format defines it (gmsh reference manual, "MSH file
 /// format", versions 2.2 and 4.1, ASCII and binary) and refuses, before gmsh
 /// opens it, anything gmsh would trust: a version other than 2.2 or 4.1, a

@@ -4,7 +4,7 @@
 /// pulse whose decay matches the impulse, the angle-of-incidence combination
 /// of incident and reflected pressure, and a user pressure history (CSV).
 ///
-/// Sources (formulas and coefficients, see docs/membrane.md "Blast loads"):
+/// Sources (formulas and coefficients, see docs/membrane-blast.md "Blast loads"):
 /// - Hemispherical surface burst: M. M. Swisdak, "Simplified Kingery Airblast
 ///   Calculations", NSWC Indian Head, 1994: Y = exp(A + B ln Z + C ln^2 Z + ...)
 ///   with Z in m/kg^(1/3), pressures in kPa, times in ms/kg^(1/3), impulses in

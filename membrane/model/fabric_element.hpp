@@ -76,7 +76,7 @@ Eigen::Matrix3d fabricForces(const FabricElement& el, const FabricStress& st, do
 /// @p Cinv = C_ps^-1. The elastic strain C_ps^-1 S carries the stress; the rest of
 /// E (the wrinkling strain of a tension-only element) is stress-free and stores
 /// nothing. Equals E.C_ps E / 2 + S0.E for a taut element; >= 0 without pre-stress.
-/// A state function: the work of the tension-only law is not (docs/membrane.md).
+/// A state function: the work of the tension-only law is not (docs/membrane-large-deflection.md).
 double fabricStoredEnergy(const FabricStress& st, const Eigen::Matrix3d& Cinv,
                           const Eigen::Vector3d& S0);
 

@@ -1,5 +1,5 @@
 /// @file malformed_input_limits_test.cpp
-/// @brief Hostile input to the core readers (issue 14): TOML nested or
+/// @brief Hostile input to the core readers: TOML nested or
 /// dotted deep enough to overflow toml++'s recursion, oversized files,
 /// non-finite numbers, out-of-range integers, names that would become paths
 /// or card lines, text written into XML. Each is refused with an error that

@@ -9,7 +9,7 @@
 /// to the solvers' tolerances. This checks the whole chain at once: the
 /// influence functions, A and P, the law's Newton and the averages (eq. 33).
 /// The accuracy with fewer partitions is a modelling error, measured by
-/// scripts/plot_rom.py (docs/homogenize.md).
+/// scripts/plot_rom.py (docs/homogenize-nonlinear.md).
 
 #include "homogenize/macro_history.hpp"
 #include "homogenize/nonlinear_homogenizer.hpp"

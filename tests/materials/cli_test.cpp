@@ -78,7 +78,7 @@ protected:
 
 } // namespace
 
-// Done-when of issue 2: `materials show` of the Table 1 material in --json
+// The materials-library interface: `materials show` of the Table 1 material in --json
 // reproduces the table (c11 = 150, c12 = 40, c13 = 10, c22 = 150, c23 = 80,
 // c33 = 150, c44 = 80, c55 = 20, c66 = 30 GPa, zeros elsewhere) exactly.
 TEST_F(MaterialsProgram, Table1ShowJsonReproducesTheTable) {
@@ -96,7 +96,7 @@ TEST_F(MaterialsProgram, Table1ShowJsonReproducesTheTable) {
   EXPECT_EQ(j.at("provenance").at("catalog_key"), "table1-anisotropic");
 }
 
-// Issue 12's interface: `show --json` of an entry with micro-inertia has
+// The micro-inertia interface: `show --json` of an entry with micro-inertia has
 // "dispersion" (6x6, kg/m, as stored, bit for bit) and "cell_size" (m), and
 // the human form prints the characteristic lengths sqrt(zeta^2 D_II / rho).
 // A [0/90] layup of it averages the plies' dispersions rotated like C: the
@@ -156,7 +156,7 @@ TEST_F(MaterialsProgram, AddConstantsRoundTripsInDocumentedOrder) {
   EXPECT_EQ(mat::Library(lib_).get("rnd").C.matrix(), c.matrix());
 }
 
-// Done-when of issue 2: a [0/90] layup of Table 1 gives the exact averaged D:
+// Layups: a [0/90] layup of Table 1 gives the exact averaged D:
 // C11 = C22 = 150, C13 = C23 = (10 + 80)/2, C55 = C66 = (20 + 30)/2,
 // C44 = 80 GPa. Thicknesses 2^-10 m make every operation exact.
 TEST_F(MaterialsProgram, LayupZeroNinetyEqualsHandAverage) {
@@ -439,7 +439,7 @@ TEST(ConcurrentWriters, KilledWriterLeavesReadableLibrary) {
   EXPECT_TRUE(mat::Library(path).contains("after"));
 }
 
-// `materials drive` (issue 11 interface): the exact header, one row per step
+// `materials drive` (the material-point driver's interface): the exact header, one row per step
 // plus t = 0, time = strain / rate, the driven column as asked; a library
 // entry drives as linear elasticity (sigma_xy = C44 gamma exactly at any
 // rate); --library after the subcommand is accepted.

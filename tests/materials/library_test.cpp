@@ -78,7 +78,7 @@ TEST(Library, WriteThenReadIsBitIdentical) {
 }
 
 // Names that need quoting in TOML (dots, '+') survive. (Names with
-// spaces, quotes or '/' are refused since issue 14: malformed_library_test.)
+// spaces, quotes or '/' are refused: malformed_library_test.)
 TEST(Library, AwkwardNamesRoundTrip) {
   TempDir dir;
   std::mt19937_64 rng(1);
@@ -241,7 +241,7 @@ TEST(Library, ResolvePathPrecedence) {
   ::unsetenv("XDG_DATA_HOME");
 }
 
-// Micro-inertia fields (issue 12): a dispersion zeta^2 D (a random Gram
+// Micro-inertia fields: a dispersion zeta^2 D (a random Gram
 // matrix, full precision, kg/m) and the cell size come back bit-identical.
 TEST(Library, DispersionAndCellSizeRoundTrip) {
   TempDir dir;

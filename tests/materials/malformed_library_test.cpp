@@ -1,5 +1,5 @@
 /// @file malformed_library_test.cpp
-/// @brief The library under hostile use (issue 14): names that would escape
+/// @brief The library under hostile use (names, concurrent writers, kill -9): names that would escape
 /// the library's folder or inject card lines, side files in the entry's
 /// transaction (races, failures, kill -9), stale temporaries, a library that
 /// is a symlink, a side_file path pointing outside.

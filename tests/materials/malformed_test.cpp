@@ -123,7 +123,7 @@ TEST_F(LibraryFile, BadThicknessNamesTheKey) {
   EXPECT_NE(msg.find("'materials.steel.plies[0].thickness'"), std::string::npos) << msg;
 }
 
-// A dispersion (issue 12) must be 6x6, symmetric and positive
+// A dispersion (micro-inertia) must be 6x6, symmetric and positive
 // semi-definite; a cell size three positive lengths. Each names its key.
 TEST_F(LibraryFile, BadDispersionAndCellSizeNameTheirKeys) {
   const std::string zero = "  [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],\n";

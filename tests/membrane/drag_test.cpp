@@ -1,4 +1,4 @@
-// Aerodynamic drag, gravity, point masses (issue 5) against exact limits.
+// Aerodynamic drag, gravity, point masses against exact limits.
 #include "helpers.hpp"
 
 #include <gtest/gtest.h>

@@ -50,7 +50,7 @@ thickness = 1.0e-3
 // reached by damped explicit dynamics. Tolerance 3 %: Hencky's solution is
 // Foppl's moderate-rotation membrane, ours the exact Green-Lagrange one
 // (differences O((w0/a)^2) = 1.3 %), on a coarse mesh (a/8 elements) whose
-// CST error is of the same order; measured -1.05 % (docs/membrane.md).
+// CST error is of the same order; measured -1.05 % (docs/membrane-large-deflection.md).
 TEST(LargeDeflection, HenckyPressurisedMembraneMatchesTheClosedForm) {
   const Model m =
       readCase(test::sourcePath("cases/membrane/hencky-circle.toml"), {}, test::testSources());

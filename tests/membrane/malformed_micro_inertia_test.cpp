@@ -1,5 +1,5 @@
-// Micro-inertia where it cannot act (issue 12, refusals tested for issue
-// 14): the gradient mass M_D has zero row sums (B of a rigid translation is
+// Micro-inertia where it cannot act (refusals of hostile input): the
+// gradient mass M_D has zero row sums (B of a rigid translation is
 // 0), so lumping it, as the explicit scheme and the large-deflection model
 // do, would drop it silently. Both are refused with the file and the key;
 // micro_inertia = false in the section runs them without it.

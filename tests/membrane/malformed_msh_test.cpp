@@ -1,5 +1,5 @@
 /// @file malformed_msh_test.cpp
-/// @brief Corrupt gmsh .msh files (issue 14) are refused by checkMshFile
+/// @brief Corrupt gmsh .msh files are refused by checkMshFile
 /// with an error naming the file, the section and the line or element,
 /// before gmsh's reader (which segfaults on some of them) sees them; the
 /// meshes gmsh writes for our .geo cases, in MSH 2.2 and 4.1, ASCII and

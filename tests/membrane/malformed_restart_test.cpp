@@ -1,4 +1,4 @@
-// Restarts that cannot continue (issue 14): no checkpoint in the folder, a
+// Restarts that cannot continue : no checkpoint in the folder, a
 // truncated or corrupted checkpoint, a checkpoint of another case, outputs
 // that are gone, a case that runs twice. Each is a clear error naming the
 // file, never a crash or a run that silently starts over.

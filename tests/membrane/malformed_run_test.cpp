@@ -1,4 +1,4 @@
-// Hostile case files and runs (issue 14): coordinates that are not finite
+// Hostile case files and runs: coordinates that are not finite
 // or off the mesh, runs of zero or of astronomically many steps, meshes
 // and convergence studies that cannot fit, case names that would escape
 // the output folder, divergence at the very first step. Each gives an error

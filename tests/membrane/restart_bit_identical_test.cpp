@@ -1,4 +1,4 @@
-// Checkpoint and restart (issue 14): a run of n steps stopped at step k and
+// Checkpoint and restart: a run of n steps stopped at step k and
 // continued from its checkpoint writes the same outputs as the run that was
 // never stopped, bit for bit: every value of probes.csv, energy.csv,
 // reactions.csv, summary.json (timings aside) and of the field series is

@@ -1,4 +1,4 @@
-// Cell files that ask for more than can be done (issue 14): counts that
+// Cell files that ask for more than can be done: counts that
 // overflowed an int or ran for hours, resolutions that wrapped around or
 // died in std::bad_alloc. Each is refused naming the file and the key.
 

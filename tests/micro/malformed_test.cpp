@@ -65,7 +65,7 @@ TEST(MalformedCell, BadPhaseLaws) {
               "law");
 }
 
-// A cell's size is in metres (issue 12): an edge above 0.1 m cannot be a
+// A cell's size is in metres: an edge above 0.1 m cannot be a
 // unit cell (and is most likely a unit-less size from before), so it is an
 // error that says so; no size is a scale-free cell.
 TEST(MalformedCell, SizeIsInMetres) {

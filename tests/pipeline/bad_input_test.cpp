@@ -1,5 +1,5 @@
 /// @file bad_input_test.cpp
-/// @brief The table of bad inputs of issue 6, run through the programs.
+/// @brief The table of bad inputs a user meets first, run through the programs.
 ///
 /// Each row: the program exits non-zero, its stderr names the cause (file,
 /// key or material), and the library file is byte-identical afterwards. The

@@ -1,5 +1,5 @@
 /// @file malformed_hostile_test.cpp
-/// @brief Issue 14's reproducers run through the programs as a user would:
+/// @brief Reproducers of hostile input run through the programs as a user would:
 /// each used to crash (stack overflow, OpenMP), escape its folder or leave
 /// a half-written output folder; now each gives a clean error naming the
 /// cause, or (for a signal) complete outputs and the shell's exit code.
