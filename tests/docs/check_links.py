@@ -30,8 +30,9 @@ CODE_DIRS = ["core", "materials", "micro", "homogenize", "membrane", "tests",
 CODE_FILES = ["Makefile", "CMakeLists.txt"]
 
 
-def strip_code(lines):
-    """Yields (number, line) outside fenced code blocks, inline code blanked."""
+def strip_code(lines, keep_inline=False):
+    """Yields (number, line) outside fenced code blocks; inline code blanked
+    unless keep_inline (a heading's anchor keeps the text of its code)."""
     fence = None
     for number, line in enumerate(lines, 1):
         stripped = line.lstrip()
@@ -42,7 +43,7 @@ def strip_code(lines):
         if stripped.startswith("```") or stripped.startswith("~~~"):
             fence = stripped[:3]
             continue
-        yield number, re.sub(r"`[^`]*`", "``", line)
+        yield number, line if keep_inline else re.sub(r"`[^`]*`", "``", line)
 
 
 def anchor(text):
@@ -65,16 +66,7 @@ class Page:
         self.anchors = set()
         self.sections = []
         seen = {}
-        fence = None
-        for line in lines:
-            stripped = line.lstrip()
-            if fence:
-                if stripped.startswith(fence):
-                    fence = None
-                continue
-            if stripped.startswith("```") or stripped.startswith("~~~"):
-                fence = stripped[:3]
-                continue
+        for _, line in strip_code(lines, keep_inline=True):
             m = HEADING.match(line)
             if m:
                 a = anchor(m.group(2))
