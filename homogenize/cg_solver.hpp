@@ -1,9 +1,9 @@
 #pragma once
 /// @file cg_solver.hpp
-/// @brief The preconditioned conjugate-gradient loop of the linear cell
-/// problem, for any right-hand side a StartResidual forms: the six macro
-/// load cases of the Homogenizer (b = -D^T C E) and the eigenstrain
-/// influence functions of a reduced-order cell (reduced_order_builder.hpp:
+/// @brief The linear cell problem solved by the conjugate-gradient loop
+/// (conjugate_gradients.hpp), for any right-hand side a StartResidual
+/// forms: the six macro load cases of the Homogenizer (b = -D^T C E) and
+/// the eigenstrain influence functions of a reduced-order cell (reduced_order_builder.hpp:
 /// b = D^T L0 mu N^(alpha), the same -D^T C' E with E = -mu and a stiffness
 /// list C' that is L0 inside partition alpha and zero elsewhere).
 ///
@@ -17,6 +17,7 @@
 /// CG vectors and of the operator's arithmetic (float or double).
 
 #include "homogenize/cell_operator.hpp"
+#include "homogenize/conjugate_gradients.hpp"
 #include "homogenize/distribution.hpp"
 #include "homogenize/green_operator.hpp"
 #include "homogenize/grid.hpp"
@@ -31,7 +32,8 @@
 namespace lamina::homogenize {
 
 /// The pieces of one solve, set up once and reused by every right-hand side:
-/// the operator, the preconditioner and the three CG vectors r, p, w.
+/// the operator, the preconditioner and the three CG vectors r, p, w (z is
+/// fused into p by GreenOperator::step).
 template <class V>
 class CgSolver {
 public:

@@ -163,8 +163,8 @@ void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, cons
 
 Result Homogenizer::run() {
   const auto t0 = std::chrono::steady_clock::now();
-  const int threads = solverThreads(opt_.threads, grid_.size());
-  const core::ThreadsScope scope(threads);
+  const SolverThreads threads(opt_.threads, grid_.size());
+  const auto guard = threads.guard();
   Result res;
   res.voxels = grid_.size();
 
@@ -210,7 +210,7 @@ Result Homogenizer::run() {
   const bool measure = opt_.measure > 0 || (opt_.measure < 0 && grid_.size() > (1u << 18));
   res.precision = opt_.precision ? *opt_.precision : autoPrecision(opt_.tol);
   res.estimate = opt_.estimate;
-  VectorFft fft(grid_, dist_, threads, measure, res.precision);
+  VectorFft fft(grid_, dist_, threads.count(), measure, res.precision);
   const CellOperator A(grid_, phase_, C_, dist_);
   const StartResidual b(grid_, phase_, C_, dist_);
   const GreenOperator M(grid_, res.lambda0, res.mu0, fft, dist_);

@@ -23,6 +23,8 @@
 /// b_k - A x_k of case k, which needs the displacement x_j of the earlier
 /// cases (six fields kept).
 
+#include "core/parallel.hpp"
+#include "homogenize/conjugate_gradients.hpp"
 #include "homogenize/distribution.hpp"
 #include "homogenize/fft.hpp"
 #include "homogenize/grid.hpp"
@@ -89,11 +91,26 @@ bool floatVectors(Precision fft, double tol);
 /// can wait a scheduler slice per barrier) and all of them above.
 int solverThreads(int requested, std::size_t voxels);
 
-/// Outcome of one load case.
-struct LoadCaseResult {
-  int iterations = 0;  ///< CG iterations
-  double residual = 0; ///< final relative residual
+/// The thread guard of a cell solver: its team size, picked once by
+/// solverThreads() (plans and buffers are made for it), and the scope that
+/// sets it for OpenMP around each call into the solver.
+class SolverThreads {
+public:
+  /// @param requested threads asked for (0: auto); @param voxels of the grid
+  SolverThreads(int requested, std::size_t voxels)
+      : count_(solverThreads(requested, voxels)) {}
+  /// @return the team size
+  int count() const { return count_; }
+  /// @return a scope in which OpenMP runs count() threads (the caller's team
+  /// size comes back when it ends)
+  core::ThreadsScope guard() const { return core::ThreadsScope(count_); }
+
+private:
+  int count_;
 };
+
+/// Outcome of one load case: CG iterations and final relative residual.
+using LoadCaseResult = CgResult;
 
 /// Everything a homogenization produces.
 struct Result {

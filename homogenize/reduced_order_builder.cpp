@@ -50,7 +50,7 @@ ReducedOrderBuilder::ReducedOrderBuilder(const Grid& grid, std::vector<std::int3
                                          bool micro_inertia, ReducedOrderOptions options)
     : grid_(grid), phase_(std::move(phase)), phases_(std::move(phases)),
       micro_inertia_(micro_inertia), opt_(std::move(options)),
-      threads_(solverThreads(opt_.threads, grid.size())) {
+      threads_(opt_.threads, grid.size()) {
   LAMINA_CHECK(phase_.size() == grid_.size(), "phase map has ", phase_.size(),
                " voxels, the grid ", grid_.size());
   LAMINA_CHECK(opt_.tol > 0, "tolerance must be positive");
@@ -74,7 +74,7 @@ ReducedOrderResult ReducedOrderBuilder::run() {
   ReducedOrderResult res;
   // before any solve: K against the phases' voxels
   checkPartitionOptions(phase_, namesOf(phases_), opt_.partitions);
-  const core::ThreadsScope scope(threads_);
+  const auto guard = threads_.guard();
   // 1. the six macro load cases: H_k, the concentration tensors, D_lin
   macroLoadCases(res);
   // 2. partitions, fractions and A^(alpha) (partition means)
@@ -94,7 +94,7 @@ void ReducedOrderBuilder::macroLoadCases(ReducedOrderResult& res) {
   Options o;
   o.tol = opt_.tol;
   o.max_iterations = opt_.max_iterations;
-  o.threads = threads_;
+  o.threads = threads_.count();
   o.measure = opt_.measure;
   o.quiet = opt_.quiet;
   o.estimate = Estimate::Stress; // C comes from the partition means
@@ -175,7 +175,7 @@ void ReducedOrderBuilder::influenceFunctions(ReducedOrderResult& res) {
   // the six cases' reference medium and operator, in double precision
   const Distribution dist = Distribution::serial(grid_);
   const bool measure = opt_.measure > 0 || (opt_.measure < 0 && N > (1u << 18));
-  VectorFft fft(grid_, dist, threads_, measure, Precision::Double);
+  VectorFft fft(grid_, dist, threads_.count(), measure, Precision::Double);
   const CellOperator A(grid_, phase_, L0_, dist);
   const GreenOperator M(grid_, res.linear.lambda0, res.linear.mu0, fft, dist);
   const materials::Matrix6 C0 =

@@ -131,7 +131,7 @@ private:
   std::vector<materials::Stiffness> L0_; // per phase
   bool micro_inertia_;
   ReducedOrderOptions opt_;
-  int threads_;
+  SolverThreads threads_;
   std::vector<double> features_; // 36 per voxel (partition.hpp)
   std::optional<DispersionAccumulator> acc_;
 };
