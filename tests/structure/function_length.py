@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """No function of the library over 80 lines, unless it says why.
 
-A function a reader can hold in view does one thing (docs/developing.md).
+A function a reader can hold in view does one thing.
 This check lists every function defined in the library folders (core,
 materials, micro, homogenize, membrane; the programs' mains included) and
 fails on each one longer than the limit, naming its file, name, first line
