@@ -214,7 +214,6 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
                                      Vector6& sigma, Matrix6* tangent,
                                      ReducedOrderStepInfo* info) const {
   const std::size_t m = nonlinear_.size();
-  const int n = model_.partitions();
   if (m == 0) { // a linear cell: sigma = (sum c L A) eps, no state
     sigma = C_linear_ * step.eps;
     if (tangent)
@@ -229,9 +228,30 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
     const int b = nonlinear_[k];
     t.eps[k] = Eigen::Map<const Vector6>(state_n + offset_[uz(b)]) + model_.A[uz(b)] * deps_c;
   }
-  Eigen::VectorXd r(6 * idx(m));
   int iterations = 0;
-  double norm = 0, last_norm = 0;
+  double norm = 0;
+  solveStrains(step, state_n, t, iterations, norm);
+  // the average (eq. 33): linear partitions through C_linear_ and B_
+  sigma = C_linear_ * step.eps;
+  for (std::size_t k = 0; k < m; ++k)
+    sigma += model_.fraction[uz(nonlinear_[k])] * t.sigma[k] + B_[k] * t.mu[k];
+  if (tangent || info) {
+    Eigen::MatrixXd deps, dmu;
+    sensitivities(t.T, deps, dmu);
+    if (tangent)
+      *tangent = coarseTangent(t.T, deps, dmu);
+    if (info)
+      *info = {iterations, norm, std::move(dmu)};
+  }
+  accept(step, t, state); // every read of state_n is done (state may alias it)
+}
+
+void ReducedOrderLaw::solveStrains(const PointStep& step, const double* state_n, Trial& t,
+                                   int& iterations, double& norm) const {
+  const std::size_t m = nonlinear_.size();
+  const int n = model_.partitions();
+  Eigen::VectorXd r(6 * idx(m));
+  double last_norm = 0;
   // Newton with the Jacobian kept while it works: the partition tangents
   // leave out the moduli's change with J, so the iteration converges
   // linearly anyway where that matters; a Jacobian is formed and factored
@@ -251,7 +271,7 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
     }
     norm = r.lpNorm<Eigen::Infinity>();
     if (norm <= options_.tolerance * scale)
-      break;
+      return;
     if (iterations == options_.max_iterations || !std::isfinite(norm))
       fail(detail::concat("the Newton iteration of the partition strains did not converge: "
                           "residual ",
@@ -265,19 +285,11 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
       t.eps[k] -= dx.segment<6>(6 * idx(k));
     ++iterations;
   }
-  // the average (eq. 33): linear partitions through C_linear_ and B_
-  sigma = C_linear_ * step.eps;
-  for (std::size_t k = 0; k < m; ++k)
-    sigma += model_.fraction[uz(nonlinear_[k])] * t.sigma[k] + B_[k] * t.mu[k];
-  if (tangent || info) {
-    Eigen::MatrixXd deps, dmu;
-    sensitivities(t.T, deps, dmu);
-    if (tangent)
-      *tangent = coarseTangent(t.T, deps, dmu);
-    if (info)
-      *info = {iterations, norm, std::move(dmu)};
-  }
-  // accept: every read of state_n is done (state may alias it)
+}
+
+void ReducedOrderLaw::accept(const PointStep& step, const Trial& t, double* state) const {
+  const std::size_t m = nonlinear_.size();
+  const int n = model_.partitions();
   for (int e : linear_) {
     Vector6 eps_e = model_.A[uz(e)] * step.eps;
     for (std::size_t l = 0; l < m; ++l)

@@ -178,6 +178,14 @@ private:
   struct Trial;
   /// Steps every nonlinear partition to the strains of @p trial.
   void evaluate(const PointStep& step, const double* state_n, Trial& trial) const;
+  /// Newton on the nonlinear partitions' strains from @p trial's start
+  /// until the residual is below the tolerance (relative to the terms it
+  /// sums); @p iterations and @p norm report the last one. Throws (fail())
+  /// at the iteration cap or a non-finite residual.
+  void solveStrains(const PointStep& step, const double* state_n, Trial& trial, int& iterations,
+                    double& norm) const;
+  /// Writes the accepted partition strains and law states of @p trial into @p state.
+  void accept(const PointStep& step, const Trial& trial, double* state) const;
   /// d eps_N / d eps^c and d mu_N / d eps^c from the partition tangents @p T.
   void sensitivities(const std::vector<Matrix6>& T, Eigen::MatrixXd& deps,
                      Eigen::MatrixXd& dmu) const;

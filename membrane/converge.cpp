@@ -29,90 +29,125 @@ double observedRate(const std::vector<double>& e) {
   return -slope;
 }
 
-ConvergenceStudy runConvergence(const std::filesystem::path& path,
-                                const std::vector<std::string>& overrides,
-                                const MaterialSources& sources, int levels, int sample_every,
-                                bool quiet) {
-  LAMINA_CHECK(levels >= 3, "--levels must be >= 3 (two differences give one rate)");
-  LAMINA_CHECK(sample_every >= 1, "sample_every must be >= 1");
-  const auto start = std::chrono::steady_clock::now();
-  const toml::table base = loadCaseDocument(path, overrides);
-  const Model coarse = buildModel(base, path, sources);
+namespace {
+
+/// Level 0 of a study: the case as given.
+struct CoarseGrid {
+  int nx, ny;   ///< squares along x and y
+  double dt;    ///< time step
+  long steps;   ///< steps to t_end
+  int nsamples; ///< nodes: every level is sampled at (the nodes nearest) these
+};
+
+/// Level 0's grid, of the case document @p base built as @p coarse; refuses
+/// a mesh that is not a structured rectangle.
+CoarseGrid coarseGrid(const toml::table& base, const Model& coarse,
+                      const std::filesystem::path& path) {
   if (coarse.mesh.source != "structured")
     throw Error("the convergence study needs mesh.type = \"rectangle\"",
                 ErrorContext{path.string(), 0, "mesh.type"});
   const auto* mesh_tbl = base["mesh"].as_table();
-  const int nx0 = static_cast<int>((*mesh_tbl)["nx"].value<std::int64_t>().value_or(0));
-  const int ny0 = static_cast<int>(
-      (*mesh_tbl)["ny"].value<std::int64_t>().value_or(static_cast<std::int64_t>(nx0)));
-  const double dt0 = coarse.time.dt;
-  const long steps0 = std::lround(coarse.time.t_end / dt0);
-  const int nsample_nodes = coarse.mesh.numNodes();
-  // The finest grid is refused up front, before the coarse ones ran: it has
-  // 2^(levels-1) times the cells per direction and the steps.
+  CoarseGrid g;
+  g.nx = static_cast<int>((*mesh_tbl)["nx"].value<std::int64_t>().value_or(0));
+  g.ny = static_cast<int>(
+      (*mesh_tbl)["ny"].value<std::int64_t>().value_or(static_cast<std::int64_t>(g.nx)));
+  g.dt = coarse.time.dt;
+  g.steps = std::lround(coarse.time.t_end / g.dt);
+  g.nsamples = coarse.mesh.numNodes();
+  return g;
+}
+
+/// Refuses the finest grid up front, before the coarse ones ran: it has
+/// 2^(levels-1) times the cells per direction and the steps.
+void checkFinestGrid(const CoarseGrid& g, int levels, const std::filesystem::path& path) {
   LAMINA_CHECK(levels <= 20,
                "--levels must be <= 20 (the finest grid has 2^(levels-1) times "
                "the cells per direction), got ",
                levels);
   const double f_max = std::ldexp(1.0, levels - 1);
   const ErrorContext levels_ctx{path.string(), 0, "--levels " + std::to_string(levels)};
-  if (!(double(std::max(nx0, ny0)) * f_max <= 100000))
-    throw Error("the finest grid would have nx = " + core::formatShort(nx0 * f_max) +
-                    ", ny = " + core::formatShort(ny0 * f_max) +
+  if (!(double(std::max(g.nx, g.ny)) * f_max <= 100000))
+    throw Error("the finest grid would have nx = " + core::formatShort(g.nx * f_max) +
+                    ", ny = " + core::formatShort(g.ny * f_max) +
                     "; mesh.nx and mesh.ny are at most "
                     "100000",
                 levels_ctx);
-  requireRunMemory((nx0 * f_max + 1) * (ny0 * f_max + 1), "the finest grid", levels_ctx);
-  if (!(double(steps0) * f_max <= kMaxSteps))
-    throw Error("the finest grid would take " + core::formatShort(double(steps0) * f_max) +
+  requireRunMemory((g.nx * f_max + 1) * (g.ny * f_max + 1), "the finest grid", levels_ctx);
+  if (!(double(g.steps) * f_max <= kMaxSteps))
+    throw Error("the finest grid would take " + core::formatShort(double(g.steps) * f_max) +
                     " steps; at most " + core::formatShort(kMaxSteps),
                 levels_ctx);
+}
 
-  ConvergenceStudy study;
-  std::vector<std::vector<double>> su(levels), sv(levels);
-  for (int k = 0; k < levels; ++k) {
-    const int f = 1 << k;
-    toml::table doc = base;
-    core::applyOverride(doc, "mesh.nx=" + std::to_string(nx0 * f));
-    core::applyOverride(doc, "mesh.ny=" + std::to_string(ny0 * f));
-    core::applyOverride(doc, "time.dt=" + core::formatExact(dt0 / f));
-    const Model model = buildModel(doc, path, sources);
-    study.nx.push_back(nx0 * f);
-    study.dt.push_back(dt0 / f);
-    std::vector<int> at(nsample_nodes);
-    for (int i = 0; i < nsample_nodes; ++i)
-      at[i] = model.mesh.nearestNode(coarse.mesh.nodes[i]);
-    Simulation sim(model);
-    core::ProgressLine progress("level " + std::to_string(k + 1) + "/" + std::to_string(levels),
-                                steps0 * f, quiet);
-    for (long s = 1; s <= steps0 * f; ++s) {
-      sim.step();
-      if (s % (static_cast<long>(f) * sample_every) != 0)
-        continue;
-      for (int i : at)
-        for (int c = 0; c < 3; ++c) {
-          su[k].push_back(sim.u()[3 * i + c]);
-          sv[k].push_back(sim.v()[3 * i + c]);
-        }
-      progress.update(s);
-    }
-    progress.finish();
+/// The case every level of a study refines.
+struct StudyCase {
+  const toml::table& base;
+  const std::filesystem::path& path;
+  const MaterialSources& sources;
+  const Model& coarse; ///< level 0, whose nodes are sampled
+  CoarseGrid grid;
+};
+
+/// The displacements and velocities of one level at the sample nodes and times.
+struct LevelSamples {
+  std::vector<double> u, v;
+};
+
+/// The model of level @p k: 2^k times the squares per direction, tau / 2^k.
+Model levelModel(const StudyCase& c, int k) {
+  const int f = 1 << k;
+  toml::table doc = c.base;
+  core::applyOverride(doc, "mesh.nx=" + std::to_string(c.grid.nx * f));
+  core::applyOverride(doc, "mesh.ny=" + std::to_string(c.grid.ny * f));
+  core::applyOverride(doc, "time.dt=" + core::formatExact(c.grid.dt / f));
+  return buildModel(doc, c.path, c.sources);
+}
+
+/// Runs level @p k of @p levels, sampled every @p sample_every coarse steps.
+LevelSamples runLevel(const StudyCase& c, int k, int levels, int sample_every, bool quiet) {
+  const int f = 1 << k;
+  const Model model = levelModel(c, k);
+  std::vector<int> at(c.grid.nsamples);
+  for (int i = 0; i < c.grid.nsamples; ++i)
+    at[i] = model.mesh.nearestNode(c.coarse.mesh.nodes[i]);
+  Simulation sim(model);
+  core::ProgressLine progress("level " + std::to_string(k + 1) + "/" + std::to_string(levels),
+                              c.grid.steps * f, quiet);
+  LevelSamples samples;
+  for (long s = 1; s <= c.grid.steps * f; ++s) {
+    sim.step();
+    if (s % (static_cast<long>(f) * sample_every) != 0)
+      continue;
+    for (int i : at)
+      for (int d = 0; d < 3; ++d) {
+        samples.u.push_back(sim.u()[3 * i + d]);
+        samples.v.push_back(sim.v()[3 * i + d]);
+      }
+    progress.update(s);
   }
-  auto norms = [](const std::vector<double>& a, const std::vector<double>& b) {
-    std::array<double, 3> r{0, 0, 0};
-    for (size_t i = 0; i < a.size(); ++i) {
-      const double d = std::abs(a[i] - b[i]);
-      r[0] += d;
-      r[1] += d * d;
-      r[2] = std::max(r[2], d);
-    }
-    r[0] /= double(a.size());
-    r[1] = std::sqrt(r[1] / double(a.size()));
-    return r;
-  };
-  for (int k = 1; k < levels; ++k) {
-    study.du.push_back(norms(su[k], su[k - 1]));
-    study.dv.push_back(norms(sv[k], sv[k - 1]));
+  progress.finish();
+  return samples;
+}
+
+/// L1 (mean), L2 (root mean square) and Linf of a - b.
+std::array<double, 3> differenceNorms(const std::vector<double>& a, const std::vector<double>& b) {
+  std::array<double, 3> r{0, 0, 0};
+  for (size_t i = 0; i < a.size(); ++i) {
+    const double d = std::abs(a[i] - b[i]);
+    r[0] += d;
+    r[1] += d * d;
+    r[2] = std::max(r[2], d);
+  }
+  r[0] /= double(a.size());
+  r[1] = std::sqrt(r[1] / double(a.size()));
+  return r;
+}
+
+/// The differences between consecutive levels and their observed rates.
+void compareLevels(const std::vector<LevelSamples>& levels, ConvergenceStudy& study) {
+  for (size_t k = 1; k < levels.size(); ++k) {
+    study.du.push_back(differenceNorms(levels[k].u, levels[k - 1].u));
+    study.dv.push_back(differenceNorms(levels[k].v, levels[k - 1].v));
   }
   for (int j = 0; j < 3; ++j) {
     std::vector<double> eu, ev;
@@ -123,6 +158,31 @@ ConvergenceStudy runConvergence(const std::filesystem::path& path,
     study.rate_u[j] = observedRate(eu);
     study.rate_v[j] = observedRate(ev);
   }
+}
+
+} // namespace
+
+ConvergenceStudy runConvergence(const std::filesystem::path& path,
+                                const std::vector<std::string>& overrides,
+                                const MaterialSources& sources, int levels, int sample_every,
+                                bool quiet) {
+  LAMINA_CHECK(levels >= 3, "--levels must be >= 3 (two differences give one rate)");
+  LAMINA_CHECK(sample_every >= 1, "sample_every must be >= 1");
+  const auto start = std::chrono::steady_clock::now();
+  const toml::table base = loadCaseDocument(path, overrides);
+  const Model coarse = buildModel(base, path, sources);
+  const CoarseGrid grid = coarseGrid(base, coarse, path);
+  checkFinestGrid(grid, levels, path);
+  const StudyCase study_case{base, path, sources, coarse, grid};
+  ConvergenceStudy study;
+  std::vector<LevelSamples> samples;
+  for (int k = 0; k < levels; ++k) {
+    const int f = 1 << k;
+    study.nx.push_back(grid.nx * f);
+    study.dt.push_back(grid.dt / f);
+    samples.push_back(runLevel(study_case, k, levels, sample_every, quiet));
+  }
+  compareLevels(samples, study);
   study.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return study;
 }

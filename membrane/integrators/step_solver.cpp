@@ -205,6 +205,36 @@ void StepSolver::remember(const Eigen::VectorXd& x) {
   AX_.push_back(s * ad_);
 }
 
+/// One CG solve, shared by the threads of its parallel region.
+struct StepSolver::CgRun {
+  int nn;                               ///< nodes: the stride of the planar vectors
+  double target;                        ///< converged when ||r|| <= target
+  bool per_node;                        ///< one preconditioner block per node (no shared rows)
+  std::vector<Partial> partial;         ///< per thread: the reductions' partial sums
+  CgOutcome outcome = CgOutcome::limit; ///< thread 0's report, read after the region
+  double final_rr = 0;                  ///< r.r at the end
+  int iterations = 0;                   ///< iterations done
+};
+
+/// One thread's share of a CG solve: its nodes [i0, i1) and its partial sums.
+struct StepSolver::CgThread {
+  CgRun& run;
+  int tid, nt, i0, i1;
+  /// Stores this thread's partial sums z.r and r.r in @p slot.
+  void publish(int slot, double rz, double rr) {
+    run.partial[tid].v[slot][0] = rz;
+    run.partial[tid].v[slot][1] = rr;
+  }
+  /// Sums slot @p k of every thread's partials, in thread order (the same
+  /// result on every thread, so all take the same branch).
+  double total(int slot, int k) const {
+    double s = 0;
+    for (int t = 0; t < nt; ++t)
+      s += run.partial[t].v[slot][k];
+    return s;
+  }
+};
+
 void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations,
                     bool have_residual) {
   // Preconditioned CG on planar copies of x, r, p, q inside one parallel
@@ -213,7 +243,6 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   // new direction). z = P r is not stored: the update and the direction
   // recompute it from r (a 3x3 product is cheaper than a pass over memory).
   const int n = static_cast<int>(b.size());
-  const int nn = n / 3;
   const double bnorm = b.norm();
   if (!(bnorm > 0)) {
     x.setZero(n);
@@ -221,108 +250,107 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   }
   if (x.size() != n)
     x = Eigen::VectorXd::Zero(n);
-  const double target = tolerance_ * bnorm;
-  const bool per_node = Ab_.sharedRows() == 0;
-  const double* P = block_inverse_.data();
-  double* xp = xp_.data();
-  double* rp = rp_.data();
-  double* pp = pp_.data();
-  double* qp = qp_.data();
-  // Applies the update or direction kernel to the nodes [i0, i1), run by run.
-  auto update = [&](double alpha, int i0, int i1, double& rz, double& rr) {
-    if (per_node)
-      return updateNodes<true>(P, nn, alpha, xp, rp, pp, qp, i0, i1, rz, rr);
-    Ab_.forEachRun(i0, i1, [&](int r0, int r1, int row) {
-      updateNodes<false>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, alpha, xp, rp, pp, qp, r0,
-                         r1, rz, rr);
-    });
-  };
-  auto direction = [&](double beta, int i0, int i1, double& rz, double& rr) {
-    if (per_node)
-      return directionNodes<true>(P, nn, beta, rp, pp, i0, i1, rz, rr);
-    Ab_.forEachRun(i0, i1, [&](int r0, int r1, int row) {
-      directionNodes<false>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, beta, rp, pp, r0, r1, rz,
-                            rr);
-    });
-  };
   const bool parallel = n > kParallelMin;
-  std::vector<Partial> partial(parallel ? omp_get_max_threads() : 1);
-  enum class Outcome { converged, breakdown, limit } outcome = Outcome::limit;
-  double final_rr = 0;
-  int done_iterations = 0;
+  CgRun run{n / 3, tolerance_ * bnorm, Ab_.sharedRows() == 0,
+            std::vector<Partial>(parallel ? omp_get_max_threads() : 1)};
+  const double* r0 = have_residual ? r_.data() : b.data();
 #pragma omp parallel if (parallel)
   {
-    const int tid = omp_get_thread_num(), nt = omp_get_num_threads();
-    const auto [i0, i1] = core::threadRange(nn);
-    // Sums slot k of every thread's partials, in thread order (the same
-    // result on every thread, so all take the same branch).
-    auto total = [&](int slot, int k) {
-      double s = 0;
-      for (int t = 0; t < nt; ++t)
-        s += partial[t].v[slot][k];
-      return s;
-    };
-    toPlanar(x.data(), xp, nn, i0, i1);
-    toPlanar(have_residual ? r_.data() : b.data(), rp, nn, i0, i1);
-#pragma omp barrier
-    if (!have_residual) { // r = b - A x
-      Ab_.multiplyPlanar(xp, qp, i0, i1);
-      for (int c = 0; c < 3; ++c)
-        for (int i = i0; i < i1; ++i)
-          rp[c * static_cast<std::ptrdiff_t>(nn) + i] -=
-              qp[c * static_cast<std::ptrdiff_t>(nn) + i];
-    }
-    double rz_part = 0, rr_part = 0;
-    direction(0.0, i0, i1, rz_part, rr_part); // p = z = P r
-    partial[tid].v[1][0] = rz_part;
-    partial[tid].v[1][1] = rr_part;
-#pragma omp barrier
-    double rz = total(1, 0), rr = total(1, 1);
-    int it = 0;
-    Outcome result = Outcome::limit;
-    if (std::sqrt(rr) <= target)
-      result = Outcome::converged;
-    else
-      for (it = 1; it <= max_iterations_; ++it) {
-        partial[tid].v[0][0] = Ab_.multiplyPlanar(pp, qp, i0, i1); // q = A p, p.q
-#pragma omp barrier
-        const double pq = total(0, 0);
-        if (!(pq > 0) || !std::isfinite(pq)) {
-          result = Outcome::breakdown;
-          break;
-        }
-        const double alpha = rz / pq;
-        rz_part = rr_part = 0;
-        update(alpha, i0, i1, rz_part, rr_part);
-        partial[tid].v[1][0] = rz_part;
-        partial[tid].v[1][1] = rr_part;
-#pragma omp barrier
-        const double rz_new = total(1, 0);
-        rr = total(1, 1);
-        if (std::sqrt(rr) <= target) {
-          result = Outcome::converged;
-          break;
-        }
-        const double beta = rz_new / rz;
-        rz = rz_new;
-        rz_part = rr_part = 0;
-        direction(beta, i0, i1, rz_part, rr_part);
-#pragma omp barrier
-      }
-    fromPlanar(xp, x.data(), nn, i0, i1);
-    if (tid == 0) {
-      outcome = result;
-      final_rr = rr;
-      done_iterations = std::min(it, max_iterations_);
-    }
+    const auto [i0, i1] = core::threadRange(run.nn);
+    CgThread t{run, omp_get_thread_num(), omp_get_num_threads(), i0, i1};
+    cgThread(t, r0, have_residual, x);
   }
-  iterations = done_iterations;
-  if (outcome == Outcome::breakdown)
+  iterations = run.iterations;
+  if (run.outcome == CgOutcome::breakdown)
     throw DivergenceError("CG breakdown: A is not positive definite or the step diverged");
-  if (outcome == Outcome::limit)
+  if (run.outcome == CgOutcome::limit)
     throw DivergenceError("CG did not converge in " + std::to_string(max_iterations_) +
                           " iterations (relative residual " +
-                          std::to_string(std::sqrt(final_rr) / bnorm) + ")");
+                          std::to_string(std::sqrt(run.final_rr) / bnorm) + ")");
+}
+
+void StepSolver::cgThread(CgThread& t, const double* r0, bool have_residual, Eigen::VectorXd& x) {
+  const int nn = t.run.nn;
+  double* xp = xp_.data();
+  double* rp = rp_.data();
+  double* qp = qp_.data();
+  toPlanar(x.data(), xp, nn, t.i0, t.i1);
+  toPlanar(r0, rp, nn, t.i0, t.i1);
+#pragma omp barrier
+  if (!have_residual) { // r = b - A x
+    Ab_.multiplyPlanar(xp, qp, t.i0, t.i1);
+    for (int c = 0; c < 3; ++c)
+      for (int i = t.i0; i < t.i1; ++i)
+        rp[c * static_cast<std::ptrdiff_t>(nn) + i] -= qp[c * static_cast<std::ptrdiff_t>(nn) + i];
+  }
+  double rz_part = 0, rr_part = 0;
+  cgDirection(t, 0.0, rz_part, rr_part); // p = z = P r
+  t.publish(1, rz_part, rr_part);
+#pragma omp barrier
+  double rz = t.total(1, 0), rr = t.total(1, 1);
+  int it = 0;
+  const CgOutcome result =
+      std::sqrt(rr) <= t.run.target ? CgOutcome::converged : cgIterate(t, rz, rr, it);
+  fromPlanar(xp, x.data(), nn, t.i0, t.i1);
+  if (t.tid == 0) {
+    t.run.outcome = result;
+    t.run.final_rr = rr;
+    t.run.iterations = std::min(it, max_iterations_);
+  }
+}
+
+StepSolver::CgOutcome StepSolver::cgIterate(CgThread& t, double rz, double& rr, int& it) {
+  for (it = 1; it <= max_iterations_; ++it) {
+    t.run.partial[t.tid].v[0][0] =
+        Ab_.multiplyPlanar(pp_.data(), qp_.data(), t.i0, t.i1); // q = A p, p.q
+#pragma omp barrier
+    const double pq = t.total(0, 0);
+    if (!(pq > 0) || !std::isfinite(pq))
+      return CgOutcome::breakdown;
+    const double alpha = rz / pq;
+    double rz_part = 0, rr_part = 0;
+    cgUpdate(t, alpha, rz_part, rr_part);
+    t.publish(1, rz_part, rr_part);
+#pragma omp barrier
+    const double rz_new = t.total(1, 0);
+    rr = t.total(1, 1);
+    if (std::sqrt(rr) <= t.run.target)
+      return CgOutcome::converged;
+    const double beta = rz_new / rz;
+    rz = rz_new;
+    rz_part = rr_part = 0;
+    cgDirection(t, beta, rz_part, rr_part); // its sums repeat the update's: unused
+#pragma omp barrier
+  }
+  return CgOutcome::limit;
+}
+
+void StepSolver::cgUpdate(const CgThread& t, double alpha, double& rz, double& rr) {
+  const double* P = block_inverse_.data();
+  const int nn = t.run.nn;
+  double* xp = xp_.data();
+  double* rp = rp_.data();
+  const double* pp = pp_.data();
+  const double* qp = qp_.data();
+  if (t.run.per_node)
+    return updateNodes<true>(P, nn, alpha, xp, rp, pp, qp, t.i0, t.i1, rz, rr);
+  Ab_.forEachRun(t.i0, t.i1, [&](int r0, int r1, int row) {
+    updateNodes<false>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, alpha, xp, rp, pp, qp, r0, r1,
+                       rz, rr);
+  });
+}
+
+void StepSolver::cgDirection(const CgThread& t, double beta, double& rz, double& rr) {
+  const double* P = block_inverse_.data();
+  const int nn = t.run.nn;
+  const double* rp = rp_.data();
+  double* pp = pp_.data();
+  if (t.run.per_node)
+    return directionNodes<true>(P, nn, beta, rp, pp, t.i0, t.i1, rz, rr);
+  Ab_.forEachRun(t.i0, t.i1, [&](int r0, int r1, int row) {
+    directionNodes<false>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, beta, rp, pp, r0, r1, rz,
+                          rr);
+  });
 }
 
 } // namespace lamina::membrane

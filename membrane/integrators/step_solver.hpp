@@ -59,7 +59,22 @@ public:
   void restoreHistory(const std::string& prefix, const History& h);
 
 private:
+  /// How a CG solve ended.
+  enum class CgOutcome { converged, breakdown, limit };
+  struct CgRun;    // one CG solve, shared by the threads of its parallel region
+  struct CgThread; // one thread's share of a solve: its nodes and partial sums
+  /// CG from @p x (r = b - A x, or r_ when @p have_residual); throws
+  /// lamina::DivergenceError on a breakdown or at the iteration limit.
   void cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations, bool have_residual);
+  /// One thread's CG: planar copies, start residual (from @p r0, b or r_),
+  /// first direction, iterations, x back; thread 0 reports in t.run.
+  void cgThread(CgThread& t, const double* r0, bool have_residual, Eigen::VectorXd& x);
+  /// The iterations from p = P r (z.r = @p rz, r.r = @p rr); @p it counts them.
+  CgOutcome cgIterate(CgThread& t, double rz, double& rr, int& it);
+  /// x += alpha p, r -= alpha q on the thread's nodes; adds z.r, r.r to @p rz, @p rr.
+  void cgUpdate(const CgThread& t, double alpha, double& rz, double& rr);
+  /// p = P r + beta p on the thread's nodes; adds z.r, r.r to @p rz, @p rr.
+  void cgDirection(const CgThread& t, double beta, double& rz, double& rr);
   void project(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   void remember(const Eigen::VectorXd& x);
   BlockMatrix Ab_; // the same matrix in 3x3 blocks, for the CG products
