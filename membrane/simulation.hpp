@@ -16,8 +16,8 @@
 
 #include "membrane/integrators/energy.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/loads/load_set.hpp"
-#include "membrane/model/model.hpp"
+#include "membrane/system/load_set.hpp"
+#include "membrane/system/model.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <Eigen/Dense>

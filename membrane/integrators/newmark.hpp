@@ -26,7 +26,7 @@
 #include "membrane/model/block_matrix.hpp"
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/loads/load_set.hpp"
+#include "membrane/system/load_set.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <memory>

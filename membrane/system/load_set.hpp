@@ -7,7 +7,7 @@
 /// The integrators see the loads only through this class, so a scheme never
 /// knows which load kinds a case has.
 
-#include "membrane/model/model.hpp"
+#include "membrane/system/model.hpp"
 
 #include <Eigen/Dense>
 
