@@ -1,7 +1,8 @@
 #pragma once
 /// @file simulation.hpp
-/// @brief A running simulation of one Model: the structure (model/), its
-/// loads (loads/), a time integrator (integrators/) advancing the State,
+/// @brief A running simulation of one Model (system/model.hpp): the
+/// structure (model/), its loads (loads/, through system/load_set.hpp), a
+/// time integrator (integrators/) advancing the State,
 /// and the shared energy bookkeeping (integrators/energy.hpp).
 ///
 /// The scheme and its equations are documented with each integrator
