@@ -6,7 +6,7 @@
 /// and still crashes gmsh is a gap in the check and must be a finding.
 
 #include "fuzz_input.hpp"
-#include "membrane/model/mesh.hpp"
+#include "membrane/io/gmsh_reader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return lamina::fuzz::guarded([&] {

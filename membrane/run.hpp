@@ -11,7 +11,7 @@
 /// state is written, summary.json records the message and
 /// lamina::DivergenceError is rethrown (exit code 3).
 
-#include "membrane/model/model.hpp"
+#include "membrane/system/model.hpp"
 
 #include <nlohmann/json.hpp>
 

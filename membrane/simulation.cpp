@@ -16,7 +16,7 @@ namespace {
 std::unique_ptr<Structure> makeStructure(const Model& model) {
   if (model.kind == ModelKind::LargeDeflection)
     return std::make_unique<LargeDeflection>(model);
-  return std::make_unique<LinearMembrane>(model);
+  return std::make_unique<LinearMembrane>(model, model.time.lumped);
 }
 
 /// The stable step of @p structure with the model's springs: a spring k on a

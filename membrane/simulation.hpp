@@ -1,7 +1,8 @@
 #pragma once
 /// @file simulation.hpp
-/// @brief A running simulation of one Model: the structure (model/), its
-/// loads (loads/), a time integrator (integrators/) advancing the State,
+/// @brief A running simulation of one Model (system/model.hpp): the
+/// structure (model/), its loads (loads/, through system/load_set.hpp), a
+/// time integrator (integrators/) advancing the State,
 /// and the shared energy bookkeeping (integrators/energy.hpp).
 ///
 /// The scheme and its equations are documented with each integrator
@@ -16,8 +17,8 @@
 
 #include "membrane/integrators/energy.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/loads/load_set.hpp"
-#include "membrane/model/model.hpp"
+#include "membrane/system/load_set.hpp"
+#include "membrane/system/model.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <Eigen/Dense>

@@ -19,7 +19,7 @@
 
 #include "core/error.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/loads/load_set.hpp"
+#include "membrane/system/load_set.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <vector>

@@ -142,29 +142,44 @@ void Newmark::divergedInSolve(const State& s, const DivergenceError& e, double t
 }
 
 void Newmark::step(State& s) {
-  const auto& ts = model_.time;
-  const double tau = ts.dt, alpha = ts.hht_alpha;
-  const double t1 = static_cast<double>(s.step + 1) * tau;
-  const bool has_drag = loads_.hasDrag();
+  const double t1 = static_cast<double>(s.step + 1) * model_.time.dt;
+  predict(s);
+  assembleRightHandSide(s, t1);
+  prescribeAccelerations(t1);
+  solveAcceleration(s, t1);
+  correct(s, t1);
+  // Commit (a_n <- a_{n+1}, then a_{n-1} <- a_n by swaps).
+  commitStep(s, t1, u1_, v1_, a1_);
+  std::swap(a_prev_, a1_);
+  std::swap(prev_, cur_);
+  std::swap(cur_, next_);
+  reactions(s, cur_, cur_.reaction);
+}
 
+void Newmark::predict(const State& s) {
   // Predictors of eq. (30), and the CG start: linear extrapolation of the
   // acceleration history (one threaded pass; these vector loops are a
   // fifth of a step at 300 x 300 when run one after the other on one thread).
+  const auto& ts = model_.time;
+  const double tau = ts.dt;
   const int n = structure_.numDofs();
   const double cu = 0.5 * tau * tau * (1 - ts.beta2), cv = tau * (1 - ts.beta1);
   ut_.resize(n);
   vt_.resize(n);
   a1_.resize(n);
-  {
-    const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data(), *ap = a_prev_.data();
-    double *ut = ut_.data(), *vt = vt_.data(), *a1 = a1_.data();
+  const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data(), *ap = a_prev_.data();
+  double *ut = ut_.data(), *vt = vt_.data(), *a1 = a1_.data();
 #pragma omp parallel for schedule(static) if (n > kParallelDofs)
-    for (int i = 0; i < n; ++i) {
-      ut[i] = u[i] + tau * v[i] + cu * a[i];
-      vt[i] = v[i] + cv * a[i];
-      a1[i] = 2 * a[i] - ap[i];
-    }
+  for (int i = 0; i < n; ++i) {
+    ut[i] = u[i] + tau * v[i] + cu * a[i];
+    vt[i] = v[i] + cv * a[i];
+    a1[i] = 2 * a[i] - ap[i];
   }
+}
+
+void Newmark::assembleRightHandSide(const State& s, double t1) {
+  const double alpha = model_.time.hht_alpha;
+  const int n = structure_.numDofs();
   if (loads_.hasExternal())
     loads_.external(t1, ut_, next_.external);
   Kb_.multiply(ut_, ku_);
@@ -181,17 +196,26 @@ void Newmark::step(State& s) {
     multiply(K_, s.u, tmp_);
     b_ -= alpha * (cur_.external + cur_.drag - tmp_);
   }
+}
+
+void Newmark::prescribeAccelerations(double t1) {
   // Prescribed accelerations so that v_{n+1} hits the prescribed velocity.
+  const auto& ts = model_.time;
   bool moving_acc = false;
   for (size_t k = 0; k < cons_.size(); ++k) {
     const int d = cons_.dofs()[k];
-    ac_[d] = (cons_.velocity(k, t1) - vt_[d]) / (ts.beta1 * tau);
+    ac_[d] = (cons_.velocity(k, t1) - vt_[d]) / (ts.beta1 * ts.dt);
     if (ac_[d] != 0)
       moving_acc = true;
   }
   if (moving_acc)
     b_ -= Afc_ * ac_;
+}
 
+void Newmark::solveAcceleration(const State& s, double t1) {
+  const auto& ts = model_.time;
+  const double tau = ts.dt, alpha = ts.hht_alpha;
+  const bool has_drag = loads_.hasDrag();
   last_iterations_ = 0;
   const int passes = has_drag ? ts.drag_iterations : 1;
   for (int pass = 0; pass < passes; ++pass) {
@@ -224,14 +248,18 @@ void Newmark::step(State& s) {
     v1_ = vt_ + (ts.beta1 * tau) * a1_;
     loads_.drag(ut_, v1_, next_.drag);
   }
+}
+
+void Newmark::correct(const State& s, double t1) {
   // u_{n+1}, v_{n+1} and the increment in one threaded pass, counting
   // non-finite values on the way.
+  const int n = structure_.numDofs();
   u1_.resize(n);
   v1_.resize(n);
   du_.resize(n);
   int non_finite = 0;
   {
-    const double cw = ts.beta1 * tau, c = c_;
+    const double cw = model_.time.beta1 * model_.time.dt, c = c_;
     const double *ut = ut_.data(), *vt = vt_.data(), *a1 = a1_.data(), *u = s.u.data();
     double *u1 = u1_.data(), *v1 = v1_.data(), *du = du_.data();
 #pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
@@ -245,13 +273,6 @@ void Newmark::step(State& s) {
   // Non-finite state: stop before committing it.
   if (non_finite > 0)
     throwNonFinite(model_.mesh, s, t1, u1_, v1_, a1_);
-
-  // Commit (a_n <- a_{n+1}, then a_{n-1} <- a_n by swaps).
-  commitStep(s, t1, u1_, v1_, a1_);
-  std::swap(a_prev_, a1_);
-  std::swap(prev_, cur_);
-  std::swap(cur_, next_);
-  reactions(s, cur_, cur_.reaction);
 }
 
 void Newmark::saveHistory(History& h) const {

@@ -26,7 +26,7 @@
 #include "membrane/model/block_matrix.hpp"
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/loads/load_set.hpp"
+#include "membrane/system/load_set.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <memory>
@@ -57,6 +57,20 @@ public:
   void restoreHistory(const History& h) override;
 
 private:
+  /// The step's stages, in order (step() reads as the method of the file comment).
+  /// u~, v~ of eq. (30) into ut_, vt_, and the solver's start a1_ = 2 a_n - a_{n-1}.
+  void predict(const State& s);
+  /// b_ = (1 + alpha) (F_{n+1} - K u~) - alpha (F_n + Fd_n - K u_n) (HHT-alpha; alpha = 0: the paper's).
+  void assembleRightHandSide(const State& s, double t1);
+  /// The constrained DOFs' accelerations ac_ that bring v_{n+1} to the
+  /// prescribed velocity at @p t1; their columns of A move to b_.
+  void prescribeAccelerations(double t1);
+  /// Solves A a_{n+1} = b_ + (1 + alpha) F_drag (a1_), iterating on the drag
+  /// at v_{n+1} (at most time.drag_iterations passes, to time.drag_tolerance).
+  void solveAcceleration(const State& s, double t1);
+  /// u_{n+1}, v_{n+1} and the increment (u1_, v1_, du_); throws
+  /// DivergenceError (throwNonFinite) before a non-finite state is committed.
+  void correct(const State& s, double t1);
   void reactions(const State& s, const StateForces& f, Eigen::VectorXd& r) const;
   [[noreturn]] void divergedInSolve(const State& s, const DivergenceError& e, double t1) const;
 

@@ -21,7 +21,7 @@
 #include "membrane/integrators/time_integrator.hpp"
 #include "membrane/model/assembly.hpp"
 #include "membrane/model/block_matrix.hpp"
-#include "membrane/model/model.hpp"
+#include "membrane/system/model.hpp"
 
 #include <Eigen/Dense>
 

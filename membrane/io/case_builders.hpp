@@ -6,9 +6,9 @@
 /// them in the order the model needs; internal to membrane/io.
 
 #include "core/toml_reader.hpp"
-#include "membrane/io/case_file.hpp"
+#include "membrane/io/material_sources.hpp"
 #include "membrane/model/mesh.hpp"
-#include "membrane/model/model.hpp"
+#include "membrane/system/model.hpp"
 
 #include <Eigen/Core>
 

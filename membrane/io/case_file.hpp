@@ -8,7 +8,8 @@
 /// the file, line and key. Materials named in the case are looked up in the
 /// materials library first, then in the catalog (the library wins).
 
-#include "membrane/model/model.hpp"
+#include "membrane/io/material_sources.hpp"
+#include "membrane/system/model.hpp"
 
 #include <toml++/toml.h>
 
@@ -18,11 +19,6 @@
 
 namespace lamina::membrane {
 
-/// Where materials come from.
-struct MaterialSources {
-  std::string library_path; ///< --library (empty: Library::resolvePath default)
-  std::string catalog_path; ///< empty: Catalog::defaultPath()
-};
 
 /// Parses @p path and applies the `--set key=value` @p overrides.
 toml::table loadCaseDocument(const std::filesystem::path& path,

@@ -2,6 +2,7 @@
 /// @brief [mesh] of a case: structured rectangle or gmsh file.
 
 #include "membrane/io/case_builders.hpp"
+#include "membrane/io/gmsh_reader.hpp"
 
 #include "core/error.hpp"
 #include "core/format.hpp"

@@ -8,7 +8,7 @@
 /// A pressure law p(x, n, t) (uniform, blast, ...) derives from
 /// ElementPressure and implements pressure().
 
-#include "membrane/loads/profile.hpp"
+#include "membrane/model/profile.hpp"
 #include "membrane/loads/surface_load.hpp"
 
 #include <vector>

@@ -3,7 +3,7 @@
 /// @brief A fixed load pattern scaled by a time profile (point forces, pressure
 /// on the flat membrane, the distributed load of eq. 31, gravity).
 
-#include "membrane/loads/profile.hpp"
+#include "membrane/model/profile.hpp"
 
 #include <Eigen/Dense>
 

@@ -2,7 +2,7 @@
 /// @file constraint.hpp
 /// @brief Constrained DOF sets: fixed supports and prescribed-velocity strikes.
 
-#include "membrane/loads/profile.hpp"
+#include "membrane/model/profile.hpp"
 
 #include <Eigen/Dense>
 

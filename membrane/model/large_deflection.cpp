@@ -18,11 +18,11 @@ namespace {
 constexpr int kParallelElements = 4000;
 } // namespace
 
-LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
+LargeDeflection::LargeDeflection(const Body& body) : body_(body) {
   const auto t0 = std::chrono::steady_clock::now();
-  const Mesh& mesh = model.mesh;
+  const Mesh& mesh = body.mesh;
   const int ne = mesh.numElements(), n = mesh.numNodes();
-  for (const auto& s : model.sections) {
+  for (const auto& s : body.sections) {
     cps_.push_back(planeStressStiffness(s.D));
     cps_inv_.push_back(cps_.back().inverse());
     s0_.push_back(s.prestress / s.thickness);
@@ -35,7 +35,7 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
   }
   elements_.reserve(ne);
   for (int e = 0; e < ne; ++e)
-    elements_.push_back(makeFabricElement(mesh, e, model.sections[mesh.region_of[e]].axis));
+    elements_.push_back(makeFabricElement(mesh, e, body.sections[mesh.region_of[e]].axis));
   // Node -> element corners, so the gather of element forces needs no atomics.
   node_start_.assign(n + 1, 0);
   for (const auto& t : mesh.triangles)
@@ -60,8 +60,8 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
       p.dN[2 * a + 1] = el.dN[a].y();
     }
     // The general path: tension-only or a nonlinear law.
-    p.region = model.sections[r].tension_only || !model.sections[r].isLinear() ? -1 - r : r;
-    p.hA = model.sections[r].thickness * el.area0;
+    p.region = body.sections[r].tension_only || !body.sections[r].isLinear() ? -1 - r : r;
+    p.hA = body.sections[r].thickness * el.area0;
   }
   x0_.resize(3 * static_cast<size_t>(n));
   for (int i = 0; i < n; ++i)
@@ -69,11 +69,11 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
   // Lumped mass: rho h A0 / 3 per node, plus the point masses.
   Eigen::VectorXd m = Eigen::VectorXd::Zero(n);
   for (int e = 0; e < ne; ++e) {
-    const auto& s = model.sections[mesh.region_of[e]];
+    const auto& s = body.sections[mesh.region_of[e]];
     for (int i : mesh.triangles[e])
       m[i] += s.density * s.thickness * elements_[e].area0 / 3;
   }
-  for (const auto& [node, pm] : model.point_masses)
+  for (const auto& [node, pm] : body.point_masses)
     m[node] += pm;
   M_.resize(3 * n, 3 * n);
   M_.reserve(Eigen::VectorXi::Constant(3 * n, 1));
@@ -81,7 +81,7 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
     for (int c = 0; c < 3; ++c)
       M_.insert(3 * i + c, 3 * i + c) = m[i];
   M_.makeCompressed();
-  min_length_.assign(model.sections.size(), std::numeric_limits<double>::infinity());
+  min_length_.assign(body.sections.size(), std::numeric_limits<double>::infinity());
   for (int e = 0; e < ne; ++e) {
     double& l = min_length_[static_cast<size_t>(mesh.region_of[e])];
     l = std::min(l, elementLength(mesh, e));
@@ -92,26 +92,26 @@ LargeDeflection::LargeDeflection(const Model& model) : model_(model) {
 
 FabricStress LargeDeflection::stress(int e, const Eigen::VectorXd& u) const {
   const FabricElement& el = elements_[e];
-  const int r = model_.mesh.region_of[e];
+  const int r = body_.mesh.region_of[e];
   std::array<Eigen::Vector3d, 3> x;
   for (int a = 0; a < 3; ++a)
-    x[a] = model_.mesh.point(el.nodes[a]) + u.segment<3>(3 * el.nodes[a]);
+    x[a] = body_.mesh.point(el.nodes[a]) + u.segment<3>(3 * el.nodes[a]);
   if (const double* b = history(e)) {
     FabricStress st = fabricStress(el, x, cps_[r], s0_[r], false); // F and E
     st.S = lawPointPk2(st.F, b);
     st.state = static_cast<Wrinkle>(static_cast<int>(b[LawPoint::kWrinkleState]));
     return st;
   }
-  return fabricStress(el, x, cps_[r], s0_[r], model_.sections[r].tension_only);
+  return fabricStress(el, x, cps_[r], s0_[r], body_.sections[r].tension_only);
 }
 
 void LargeDeflection::initHistory() {
-  const Mesh& mesh = model_.mesh;
+  const Mesh& mesh = body_.mesh;
   const int ne = mesh.numElements();
   long size = 0;
   std::vector<long> offset(ne, -1);
   for (int e = 0; e < ne; ++e) {
-    const Section& s = model_.sections[mesh.region_of[e]];
+    const Section& s = body_.sections[mesh.region_of[e]];
     if (s.isLinear())
       continue;
     offset[e] = size;
@@ -123,15 +123,15 @@ void LargeDeflection::initHistory() {
   history_.assign(static_cast<size_t>(size), 0.0);
   for (int e = 0; e < ne; ++e)
     if (history_offset_[e] >= 0)
-      initLawPoint(*model_.sections[mesh.region_of[e]].law, elements_[e].frame.leftCols<2>(),
+      initLawPoint(*body_.sections[mesh.region_of[e]].law, elements_[e].frame.leftCols<2>(),
                    history_.data() + history_offset_[e]);
   trial_ = history_;
 }
 
 void LargeDeflection::lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F,
                                       double* out) const {
-  const int r = model_.mesh.region_of[e];
-  const Section& s = model_.sections[r];
+  const int r = body_.mesh.region_of[e];
+  const Section& s = body_.sections[r];
   const long o = history_offset_[e];
   Eigen::Vector3d S;
   try {
@@ -156,10 +156,10 @@ Eigen::Vector2d LargeDeflection::cauchyPrincipal(int e, const FabricStress& st) 
 
 double LargeDeflection::inelasticDissipation() const {
   double D = 0;
-  const int ne = model_.mesh.numElements();
+  const int ne = body_.mesh.numElements();
   for (int e = 0; e < ne; ++e)
     if (const double* b = history(e))
-      D += model_.sections[model_.mesh.region_of[e]].thickness * elements_[e].area0 *
+      D += body_.sections[body_.mesh.region_of[e]].thickness * elements_[e].area0 *
            b[LawPoint::kDissipation];
   return D;
 }
@@ -185,7 +185,7 @@ void LargeDeflection::restoreHistory(const History& h) {
       historyEntry(h, kHistoryKey, static_cast<Eigen::Index>(history_.size()));
   if (!v.allFinite())
     throw Error(std::string("checkpoint entry '") + kHistoryKey + "' holds a non-finite value");
-  for (int e = 0; e < model_.mesh.numElements(); ++e) {
+  for (int e = 0; e < body_.mesh.numElements(); ++e) {
     const long o = history_offset_[e];
     if (o < 0)
       continue;
@@ -202,7 +202,7 @@ void LargeDeflection::restoreHistory(const History& h) {
 }
 
 void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
-  const int ne = model_.mesh.numElements(), n = model_.mesh.numNodes();
+  const int ne = body_.mesh.numElements(), n = body_.mesh.numNodes();
   double* fe = fe_.data();
   core::ParallelErrors errors; // a nonlinear law's failure, naming the element
   // Threads only pay off on large meshes (on small ones their start-up dominates).
@@ -222,7 +222,7 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
       if (p.region < 0 && !law_element) {
         const FabricStress st = stress(e, u);
         const Eigen::Matrix3d fa =
-            fabricForces(elements_[e], st, model_.sections[-1 - p.region].thickness);
+            fabricForces(elements_[e], st, body_.sections[-1 - p.region].thickness);
         Eigen::Map<Eigen::Matrix3d>{out} = fa;
         continue;
       }
@@ -269,20 +269,20 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
 }
 
 double LargeDeflection::strainEnergy(const Eigen::VectorXd& u) const {
-  const int ne = model_.mesh.numElements();
+  const int ne = body_.mesh.numElements();
   double U = 0;
 #pragma omp parallel for reduction(+ : U) schedule(static) if (ne > kParallelElements)
   for (int e = 0; e < ne; ++e) {
-    const int r = model_.mesh.region_of[e];
+    const int r = body_.mesh.region_of[e];
     if (const double* b = history(e)) {
-      U += model_.sections[r].thickness * elements_[e].area0 * b[LawPoint::kPsi];
+      U += body_.sections[r].thickness * elements_[e].area0 * b[LawPoint::kPsi];
       continue;
     }
     const FabricStress st = stress(e, u);
-    const double w = model_.sections[r].tension_only
+    const double w = body_.sections[r].tension_only
                          ? fabricStoredEnergy(st, cps_inv_[r], s0_[r])
                          : 0.5 * st.E.dot(cps_[r] * st.E) + s0_[r].dot(st.E);
-    U += model_.sections[r].thickness * elements_[e].area0 * w;
+    U += body_.sections[r].thickness * elements_[e].area0 * w;
   }
   return U;
 }
@@ -291,26 +291,26 @@ double LargeDeflection::restSpeed(size_t r) const {
   // A tension T adds T / (rho h) to c^2 (the string's wave); take its largest principal value.
   const Eigen::Vector2d t = principal2(s0_[r][0], s0_[r][1], s0_[r][2]);
   const double modulus = maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(t[0], 0.0);
-  return std::sqrt(modulus / model_.sections[r].density);
+  return std::sqrt(modulus / body_.sections[r].density);
 }
 
 double LargeDeflection::stableStep() const {
   std::vector<double> speed;
-  for (size_t r = 0; r < model_.sections.size(); ++r) {
+  for (size_t r = 0; r < body_.sections.size(); ++r) {
     speed.push_back(restSpeed(r));
   }
-  return criticalStep(model_.mesh, speed);
+  return criticalStep(body_.mesh, speed);
 }
 
 double LargeDeflection::currentStableStep() const {
   if (!hasHistory())
     return stableStep();
-  const size_t nr = model_.sections.size();
+  const size_t nr = body_.sections.size();
   std::vector<double> jmin(nr, std::numeric_limits<double>::infinity()), jmax(nr, 0.0);
   std::vector<double> amp(nr, 1.0), tension(nr, 0.0);
-  for (int e = 0; e < model_.mesh.numElements(); ++e)
+  for (int e = 0; e < body_.mesh.numElements(); ++e)
     if (const double* b = history(e)) {
-      const auto r = static_cast<size_t>(model_.mesh.region_of[e]);
+      const auto r = static_cast<size_t>(body_.mesh.region_of[e]);
       const double J = b[LawPoint::kJ];
       jmin[r] = std::min(jmin[r], J);
       jmax[r] = std::max(jmax[r], J);
@@ -327,7 +327,7 @@ double LargeDeflection::currentStableStep() const {
     }
   std::vector<double> speed;
   for (size_t r = 0; r < nr; ++r) {
-    const Section& s = model_.sections[r];
+    const Section& s = body_.sections[r];
     if (s.isLinear()) {
       speed.push_back(restSpeed(r));
       continue;
@@ -351,7 +351,7 @@ double LargeDeflection::currentStableStep() const {
 }
 
 std::vector<CellField> LargeDeflection::cellFields(const Eigen::VectorXd& u) const {
-  const int ne = model_.mesh.numElements();
+  const int ne = body_.mesh.numElements();
   const auto sz = static_cast<size_t>(ne);
   CellField strain{"strain", 3, std::vector<double>(3 * sz)};
   CellField stress_f{"stress", 3, std::vector<double>(3 * sz)};
@@ -391,7 +391,7 @@ void LargeDeflection::checkFailure(double t, const Eigen::VectorXd& u,
                                    FailureRecord& record) const {
   if (!any_threshold_)
     return;
-  const int ne = model_.mesh.numElements();
+  const int ne = body_.mesh.numElements();
   if (record.time.empty()) {
     record.time.assign(ne, -1.0);
     record.criterion.assign(ne, FailureCriterion::None);
@@ -401,7 +401,7 @@ void LargeDeflection::checkFailure(double t, const Eigen::VectorXd& u,
   for (int e = 0; e < ne; ++e) {
     if (record.time[e] >= 0)
       continue;
-    const Section& s = model_.sections[model_.mesh.region_of[e]];
+    const Section& s = body_.sections[body_.mesh.region_of[e]];
     if (!std::isfinite(s.failure_strain) && !std::isfinite(s.failure_stress))
       continue;
     const FabricStress st = stress(e, u);

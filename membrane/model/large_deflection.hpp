@@ -14,20 +14,20 @@
 /// internalForce() and accepted by commitStep() (structure.hpp).
 
 #include "membrane/model/fabric_element.hpp"
-#include "membrane/model/model.hpp"
+#include "membrane/model/body.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <vector>
 
 namespace lamina::membrane {
 
-/// Large-deflection membrane of one Model.
+/// Large-deflection membrane of one Body.
 class LargeDeflection final : public Structure {
 public:
   /// Builds the element frames (material axis per region), C_ps per region
-  /// and the lumped mass. Keeps a reference to @p model.
-  explicit LargeDeflection(const Model& model);
-  int numDofs() const override { return 3 * model_.mesh.numNodes(); }
+  /// and the lumped mass. Keeps a reference to @p body.
+  explicit LargeDeflection(const Body& body);
+  int numDofs() const override { return 3 * body_.mesh.numNodes(); }
   const SparseMatrix& mass() const override { return M_; }
   void internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   /// @return sum of h A0 (E.C_ps E / 2 + S0.E); in a tension-only region the
@@ -82,7 +82,7 @@ public:
   const Eigen::Matrix3d& planeStress(int r) const { return cps_[r]; }
 
 private:
-  const Model& model_;
+  const Body& body_;
   std::vector<FabricElement> elements_;
   std::vector<Eigen::Matrix3d> cps_;     // per region
   std::vector<Eigen::Matrix3d> cps_inv_; // C_ps^-1 per region (1/Pa)

@@ -8,18 +8,18 @@
 
 namespace lamina::membrane {
 
-LinearMembrane::LinearMembrane(const Model& model) : model_(model) {
-  for (const Section& s : model.sections) // models are also built by hand, not only from cases
+LinearMembrane::LinearMembrane(const Body& body, bool lumped) : body_(body) {
+  for (const Section& s : body.sections) // models are also built by hand, not only from cases
     LAMINA_CHECK(s.isLinear(), "section '", s.name, "' (", s.material, ") has a nonlinear law (",
                  materials::toString(s.law->kind()),
                  "), which the linear (paper's) model cannot carry: use model = "
                  "\"large_deflection\"");
   const auto t0 = std::chrono::steady_clock::now();
-  GlobalMatrices g = assemble(model.mesh, model.sections, model.time.lumped);
+  GlobalMatrices g = assemble(body.mesh, body.sections, lumped);
   K_ = std::move(g.K);
   M_ = std::move(g.M);
   MD_ = std::move(g.MD);
-  for (const auto& [node, m] : model.point_masses)
+  for (const auto& [node, m] : body.point_masses)
     for (int c = 0; c < 3; ++c)
       M_.coeffRef(3 * node + c, 3 * node + c) += m;
   assembly_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -39,13 +39,13 @@ double LinearMembrane::strainEnergy(const Eigen::VectorXd& u) const {
 
 double LinearMembrane::stableStep() const {
   std::vector<double> speed;
-  for (const auto& s : model_.sections)
+  for (const auto& s : body_.sections)
     speed.push_back(std::sqrt(maxWaveModulus(s.D, StrainKind::Lamina6) / s.density));
-  return criticalStep(model_.mesh, speed);
+  return criticalStep(body_.mesh, speed);
 }
 
 std::vector<CellField> LinearMembrane::cellFields(const Eigen::VectorXd& u) const {
-  const Mesh& mesh = model_.mesh;
+  const Mesh& mesh = body_.mesh;
   const int ne = mesh.numElements();
   CellField strain{"strain", 6, std::vector<double>(6 * static_cast<size_t>(ne))};
   CellField stress{"stress", 6, std::vector<double>(6 * static_cast<size_t>(ne))};
@@ -55,7 +55,7 @@ std::vector<CellField> LinearMembrane::cellFields(const Eigen::VectorXd& u) cons
     for (int k = 0; k < 3; ++k)
       ae.segment<3>(3 * k) = u.segment<3>(3 * tri[k]);
     const Eigen::Matrix<double, 6, 1> eps = strainMatrix(mesh, e) * ae;
-    const Eigen::Matrix<double, 6, 1> sig = model_.sections[mesh.region_of[e]].D * eps; // eq. (15)
+    const Eigen::Matrix<double, 6, 1> sig = body_.sections[mesh.region_of[e]].D * eps; // eq. (15)
     for (int k = 0; k < 6; ++k) {
       strain.values[6 * static_cast<size_t>(e) + k] = eps[k];
       stress.values[6 * static_cast<size_t>(e) + k] = sig[k];

@@ -4,7 +4,7 @@
 /// displacements, f_int = K u with K and M of eqs. (23)-(27).
 
 #include "membrane/model/block_matrix.hpp"
-#include "membrane/model/model.hpp"
+#include "membrane/model/body.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <memory>
@@ -14,10 +14,11 @@ namespace lamina::membrane {
 /// K and M assembled once (assembly.hpp); point masses added to M.
 class LinearMembrane final : public Structure {
 public:
-  /// Assembles K and M of @p model (consistent or lumped mass per model.time.lumped).
+  /// Assembles K and M of @p body (the lumped, row-sum, mass when @p lumped, else
+  /// the consistent one); keeps a reference to @p body.
   /// Throws lamina::Error naming the section when a section's law is not
   /// linear (Section::isLinear): only the large-deflection model steps one.
-  explicit LinearMembrane(const Model& model);
+  LinearMembrane(const Body& body, bool lumped);
   int numDofs() const override { return static_cast<int>(K_.rows()); }
   const SparseMatrix& mass() const override { return M_; }
   /// f = K u (3x3-block product; shared stencil rows on uniform meshes).
@@ -34,7 +35,7 @@ public:
   double setupSeconds() const override { return assembly_s_; }
 
 private:
-  const Model& model_;
+  const Body& body_;
   SparseMatrix K_, M_, MD_;
   mutable std::unique_ptr<BlockMatrix> Kb_; // for internalForce (explicit runs only)
   double assembly_s_ = 0;

@@ -1,8 +1,8 @@
 #pragma once
 /// @file mesh.hpp
-/// @brief Triangle meshes of the membrane: the built-in structured rectangle
-/// (x-y plane) and gmsh files (.msh, .geo) read via the gmsh C++ API, flat
-/// or curved surfaces in 3D.
+/// @brief Triangle meshes of the membrane, flat or curved surfaces in 3D:
+/// the built-in structured rectangle (x-y plane) here, gmsh files (.msh,
+/// .geo) through membrane/io/gmsh_reader.hpp.
 ///
 /// Contract: on exit every triangle has three distinct node indices, a
 /// positive area and a region index into `regions`. A flat mesh (all z = 0,
@@ -61,23 +61,6 @@ struct Mesh {
 /// nx x ny squares, each split in two triangles by the diagonal from its
 /// lower-left to its upper-right corner. One region "all".
 Mesh structuredRectangle(double Lx, double Ly, int nx, int ny);
-
-/// Where gmsh's own reader first opens a .msh file that checkMshFile
-/// (membrane/io/msh_check.hpp) accepted.
-enum class GmshProbe {
-  kChild,    ///< first in a forked child: a crash there is a clean lamina::Error
-  kInProcess ///< only in this process (msh_fuzzer: a gap in the check is a finding)
-};
-
-/// Reads a 2D triangle mesh from a gmsh .msh file, or meshes a .geo file
-/// (2D), through the gmsh C++ API. Physical surfaces become regions (a mesh
-/// without physical surfaces has one region "all"); physical curves and
-/// points become node sets. A .msh file passes checkMshFile first and, with
-/// @p probe kChild, is read once by gmsh in a forked child: a signal there
-/// ("gmsh's reader crashed on FILE (signal 11)") is an Error, not a crash.
-/// Throws lamina::Error naming the file when it is missing, unreadable,
-/// malformed, or has no triangles.
-Mesh readGmsh(const std::filesystem::path& path, GmshProbe probe = GmshProbe::kChild);
 
 /// Memory a run needs per mesh node, bytes: peak resident size of `membrane
 /// run` (CG solver) grows by 4.4 kB per node between nx = 100 and nx = 300

@@ -9,7 +9,7 @@
 #include "helpers.hpp"
 
 #include "membrane/loads/blast.hpp"
-#include "membrane/loads/profile.hpp"
+#include "membrane/model/profile.hpp"
 #include "membrane/run.hpp"
 #include "restart_helpers.hpp"
 

@@ -7,7 +7,7 @@
 
 #include "../core/test_util.hpp"
 #include "membrane/io/msh_check.hpp"
-#include "membrane/model/mesh.hpp"
+#include "membrane/io/gmsh_reader.hpp"
 
 #include <gtest/gtest.h>
 

@@ -117,7 +117,7 @@ TEST(MalformedSectionLaw, LinearMembraneBuiltByHandRefusesANonlinearSection) {
   const Model model = test::modelFromText(test::sectionSheet("material = \"polyurea-gvbo\"\n"));
   std::string e;
   try {
-    LinearMembrane m(model);
+    LinearMembrane m(model, model.time.lumped);
   } catch (const lamina::Error& err) {
     e = err.what();
   }

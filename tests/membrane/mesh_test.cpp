@@ -1,5 +1,6 @@
 // Meshes (structured, gmsh with regions and boundary sets) and run outputs.
 #include "helpers.hpp"
+#include "membrane/io/gmsh_reader.hpp"
 #include "membrane/run.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "membrane/loads/profile.hpp"
+#include "membrane/model/profile.hpp"
 
 #include <algorithm>
 #include <cmath>

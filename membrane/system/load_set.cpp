@@ -1,4 +1,4 @@
-#include "membrane/loads/load_set.hpp"
+#include "membrane/system/load_set.hpp"
 
 #include <algorithm>
 

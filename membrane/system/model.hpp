@@ -1,21 +1,23 @@
 #pragma once
 /// @file model.hpp
-/// @brief A membrane problem fully resolved against its mesh: sections per
-/// region, constrained DOFs, load patterns with time profiles, drag, point
-/// masses, probes and the time-stepping settings. Built from a case file by
+/// @brief A membrane problem fully resolved against its mesh: the body
+/// (mesh, sections per region, point masses; model/body.hpp), constrained
+/// DOFs, load patterns with time profiles, drag, springs, rigid sets,
+/// probes and the time-stepping settings. Built from a case file by
 /// case_file.hpp, or directly by tests.
 ///
 /// Units SI. Forces are nodal force vectors of length 3 * nodes (N), the
-/// DOF numbering of assembly.hpp. The pieces live by kind: the mesh, sections
-/// and constraints in model/, the loads in loads/.
+/// DOF numbering of assembly.hpp. The pieces live by floor: the body and the
+/// constraints in model/, the loads in loads/; this aggregate sits above
+/// both (system/), where the second-order system of the structure and what
+/// acts on it (its forces, reactions and works for the integrators) belongs.
 
 #include "membrane/loads/drag.hpp"
 #include "membrane/loads/ground_springs.hpp"
 #include "membrane/loads/load.hpp"
 #include "membrane/loads/surface_load.hpp"
+#include "membrane/model/body.hpp"
 #include "membrane/model/constraint.hpp"
-#include "membrane/model/mesh.hpp"
-#include "membrane/model/section.hpp"
 
 #include <Eigen/Dense>
 
@@ -90,11 +92,10 @@ struct OutputSettings {
   long checkpoint_every = 0; ///< write checkpoint.h5 every this many steps (0: only on interrupt)
 };
 
-/// Everything a run needs.
-struct Model {
+/// Everything a run needs: the body (mesh, sections, point masses) and
+/// what acts on it. The structures (model/) see only the Body part.
+struct Model : Body {
   std::string name;                                              ///< case name (file stem)
-  Mesh mesh;                                                     ///< the mesh
-  std::vector<Section> sections;                                 ///< one per mesh region
   std::vector<Constraint> constraints;                           ///< fixed and moving DOF sets
   std::vector<Load> loads;                                       ///< external loads (incl. gravity)
   std::vector<Drag> drags;                                       ///< drag regions (linear model)
@@ -102,14 +103,11 @@ struct Model {
   std::vector<std::shared_ptr<const SurfaceLoad>> surface_loads; ///< follower loads
   std::vector<std::shared_ptr<const GroundSprings>> springs;     ///< springs to the ground
   std::vector<RigidSet> rigid;                                   ///< rigid translating sets
-  std::vector<std::pair<int, double>> point_masses;              ///< (node, kg)
   std::vector<Probe> probes;                                     ///< probes
   TimeSettings time;                                             ///< time stepping
   OutputSettings output;                                         ///< outputs
   Eigen::VectorXd u0, v0;            ///< initial displacement and velocity (empty = zero)
   bool compare_without_drag = false; ///< run also without the drag and compare peaks
-  /// @return the number of degrees of freedom, 3 per node
-  int numDofs() const { return 3 * mesh.numNodes(); }
 };
 
 } // namespace lamina::membrane

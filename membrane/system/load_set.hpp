@@ -5,9 +5,10 @@
 /// follower pressures), the drag F_drag(u, v) and the springs F_s(u).
 ///
 /// The integrators see the loads only through this class, so a scheme never
-/// knows which load kinds a case has.
+/// knows which load kinds a case has. It reads the Model's loads, so it sits
+/// with the Model above loads/ (the forces part of the system object).
 
-#include "membrane/model/model.hpp"
+#include "membrane/system/model.hpp"
 
 #include <Eigen/Dense>
 
