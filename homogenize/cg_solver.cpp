@@ -22,8 +22,8 @@ namespace {
 template <class V>
 class CellProblem final : public CgProblem {
 public:
-  CellProblem(const CellOperator& A, const GreenOperator& M, std::size_t n, V* r, V* p, V* w,
-              V* x, std::array<double, 6>* sigma)
+  CellProblem(const CellOperator& A, const GreenOperator& M, std::size_t n, V* r, V* p, V* w, V* x,
+              std::array<double, 6>* sigma)
       : A_(A), M_(M), n_(n), r_(r), p_(p), w_(w), x_(x), sigma_(sigma) {}
 
   double start() override {
@@ -54,7 +54,9 @@ public:
     return M_.step(r_, alpha, w_, x_, p_, rz, rz_stop);
   }
 
-  const char* indefiniteCause() const override { return "an indefinite phase stiffness"; }
+  const char* indefiniteCause() const override {
+    return "an indefinite phase stiffness";
+  }
 
 private:
   static constexpr std::array<double, 6> kZero{0, 0, 0, 0, 0, 0};
@@ -69,10 +71,10 @@ private:
 } // namespace
 
 template <class V>
-LoadCaseResult CgSolver<V>::solve(const StartResidual& b, const std::array<double, 6>& E,
-                                  double energy_E, const Options& opt,
-                                  const std::function<void(int, double)>& monitor,
-                                  std::array<double, 6>* sigma, V* x) {
+CgResult CgSolver<V>::solve(const StartResidual& b, const std::array<double, 6>& E, double energy_E,
+                            double tol, int max_iterations,
+                            const std::function<void(int, double)>& monitor,
+                            std::array<double, 6>* sigma, V* x) {
   // r = b = -D^T C' E (x = 0) and <C' E>: the operator's values with u = 0,
   // formed only next to interfaces (start_residual.hpp)
   std::array<double, 6> start{};
@@ -80,8 +82,8 @@ LoadCaseResult CgSolver<V>::solve(const StartResidual& b, const std::array<doubl
   if (sigma)
     *sigma = start;
   CellProblem<V> problem(A_, M_, n_, r_.data(), p_.data(), w_.data(), x, sigma);
-  const LoadCaseResult res = conjugateGradients(
-      problem, CgControl::relative(opt.tol, ref_ * energy_E, opt.max_iterations), monitor);
+  const CgResult res = conjugateGradients(
+      problem, CgControl::relative(tol, ref_ * energy_E, max_iterations), monitor);
   // With x formed, one stress pass gives <C (E + D x)> directly: the sum of
   // alpha_k <C D p_k> carries the rounding of every step's average (1e-12
   // relative at 128^3, enough to tell thread counts or ranks apart). With

@@ -21,7 +21,6 @@
 #include "homogenize/distribution.hpp"
 #include "homogenize/green_operator.hpp"
 #include "homogenize/grid.hpp"
-#include "homogenize/homogenizer.hpp"
 #include "homogenize/start_residual.hpp"
 
 #include <array>
@@ -48,16 +47,16 @@ public:
   /// Solves A x = b with b = -D^T C' E formed by @p b (whose stiffness list
   /// C' may differ from A's: see the file comment).
   /// @param energy_E E^T C0 E, the scale of the convergence test
-  /// @param opt tol and max_iterations
+  /// @param tol relative residual to reach; @param max_iterations limit
   /// @param monitor called after each iteration with (iteration, residual)
   /// @param sigma if not null: on exit the average stress <C (E + D x)> of
   ///   A's stiffness (meaningful when C' is A's list; a macro load case)
   /// @param x if not null: on exit the displacement (3 x local)
   /// @return iterations and final residual. Throws lamina::Error when
   /// max_iterations is reached, lamina::DivergenceError on NaN/Inf.
-  LoadCaseResult solve(const StartResidual& b, const std::array<double, 6>& E, double energy_E,
-                       const Options& opt, const std::function<void(int, double)>& monitor,
-                       std::array<double, 6>* sigma, V* x);
+  CgResult solve(const StartResidual& b, const std::array<double, 6>& E, double energy_E,
+                 double tol, int max_iterations, const std::function<void(int, double)>& monitor,
+                 std::array<double, 6>* sigma, V* x);
 
   /// dots[j] = x_j^T r (r: the last solve's final residual), j < count <= 6,
   /// summed over ranks, in one pass over r.

@@ -1,7 +1,7 @@
 #include "homogenize/distribution.hpp"
 
 #include "core/error.hpp"
-#include "homogenize/fft.hpp"
+#include "homogenize/fftw_threads.hpp"
 
 #include <algorithm>
 #include <cstdlib>

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "homogenize/fftw_threads.hpp"
 
 #include <fftw3.h>
 #include <omp.h>
@@ -216,11 +217,6 @@ void exportWisdom(const std::string& path) {
   }
 }
 } // namespace
-
-bool initFftwThreads() {
-  static const bool ok = fftw_init_threads() != 0 && fftwf_init_threads() != 0;
-  return ok;
-}
 
 std::string VectorFft::wisdomPath() {
   if (const char* p = std::getenv("LAMINA_FFTW_WISDOM"))

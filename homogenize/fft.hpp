@@ -18,10 +18,6 @@ enum class Precision {
   Single  ///< 32-bit transforms (about 1.7x faster at 128^3, half the memory)
 };
 
-/// Initialises FFTW's threads (double and single precision) once per process.
-/// @return false when FFTW has no thread support
-bool initFftwThreads();
-
 /// In-place FFTs of 3 components held in one spectrum buffer.
 ///
 /// Layout: component c occupies chunkSize() complex entries from

@@ -128,7 +128,7 @@ void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, cons
     };
     try {
       V* xk = x.empty() ? nullptr : x[energy_form ? static_cast<std::size_t>(k) : 0].data();
-      res.cases[static_cast<std::size_t>(k)] = cg.solve(b, E, energy, opt_, monitor, &sigma, xk);
+      res.cases[static_cast<std::size_t>(k)] = cg.solve(b, E, energy, opt_.tol, opt_.max_iterations, monitor, &sigma, xk);
     } catch (const DivergenceError& e) {
       throw DivergenceError("load case " + std::to_string(k + 1) + ": " + e.message());
     } catch (const Error& e) {

@@ -199,7 +199,7 @@ void ReducedOrderBuilder::influenceFunctions(ReducedOrderResult& res) {
       const std::size_t col = 6 * a + static_cast<std::size_t>(J);
       LoadCaseResult r;
       try { // b = -D^T C' (-e_J) = D^T L0 e_J N^(alpha)
-        r = cg.solve(b, unit(J, -1.0), C0(J, J), o, {}, nullptr, S.data());
+        r = cg.solve(b, unit(J, -1.0), C0(J, J), o.tol, o.max_iterations, {}, nullptr, S.data());
       } catch (const DivergenceError& e) {
         throw DivergenceError("partition " + std::to_string(a) + ", eigenstrain " +
                               std::to_string(J + 1) + ": " + e.message());

@@ -19,10 +19,6 @@
 
 namespace lamina::materials {
 
-/// Tensor index pair (i, j) of each lamina-order component.
-constexpr std::array<std::pair<int, int>, 6> kLaminaPairs{
-    {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}}};
-
 /// Lamina index of each standard Voigt position (V[k] = L[kVoigtFromLamina[k]]).
 constexpr std::array<int, 6> kVoigtFromLamina{0, 1, 2, 4, 5, 3};
 /// Lamina index of each Abaqus position (11 22 33 12 13 23).

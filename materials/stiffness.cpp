@@ -3,7 +3,6 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/toml_reader.hpp"
-#include "materials/conversions.hpp"
 
 #include <cmath>
 #include <ostream>

@@ -31,6 +31,10 @@ struct EngineeringConstants {
   double nu21, nu31, nu32; ///< the reciprocal Poisson ratios
 };
 
+/// Tensor index pair (i, j) of each lamina-order component.
+constexpr std::array<std::pair<int, int>, 6> kLaminaPairs{
+    {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}}};
+
 /// A symmetric 6x6 elastic stiffness in lamina order (Pa).
 class Stiffness {
 public:
