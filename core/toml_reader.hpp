@@ -8,12 +8,13 @@
 /// the file, the line and the dotted key. Type errors and missing required
 /// keys are reported the same way. Nothing is silently ignored.
 
+#include "core/enum_names.hpp"
+
 #include <toml++/toml.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <initializer_list>
-#include <iterator>
 #include <memory>
 #include <optional>
 #include <set>
@@ -158,17 +159,13 @@ private:
   template <class Choices>
   auto choiceOf(std::string_view key, const Choices& choices) const {
     const std::string v = getString(key);
-    std::string names;
-    std::size_t k = 0;
+    std::vector<std::string_view> names;
     for (const auto& [name, value] : choices) {
       if (name == v)
         return value;
-      if (k > 0)
-        names += k + 1 == std::size(choices) ? " or " : ", ";
-      names += "\"" + std::string(name) + "\"";
-      ++k;
+      names.push_back(name);
     }
-    fail(key, "unknown value \"" + v + "\" (expected " + names + ")");
+    fail(key, "unknown value \"" + v + "\" (expected " + choiceList(names, '"') + ")");
   }
   struct Record {
     std::set<std::string> read;  // dotted paths read

@@ -11,6 +11,7 @@
 #include "homogenize/cli.hpp"
 
 #include "core/atomic_file.hpp"
+#include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "core/names.hpp"
 #include "core/resources.hpp"
@@ -88,47 +89,24 @@ void printHuman(const lamina::homogenize::EntryResult& e, const lamina::micro::U
   std::printf("added '%s' to %s\n", name.c_str(), library.c_str());
 }
 
-/// A choice of the command line: its names (in --help's and the error's
-/// order) and the value each one stands for. Parsed once, after CLI11's check.
-template <class E, std::size_t N>
-using Choices = std::array<std::pair<const char*, E>, N>;
-
-/// @return the names of @p choices, for CLI::IsMember
-template <class E, std::size_t N>
-std::vector<std::string> namesOf(const Choices<E, N>& choices) {
-  std::vector<std::string> names;
-  for (const auto& c : choices)
-    names.emplace_back(c.first);
-  return names;
-}
-
-/// @return the value of @p name (already checked by CLI::IsMember against namesOf(@p choices))
-template <class E, std::size_t N>
-E valueOf(const Choices<E, N>& choices, const std::string& name) {
-  for (const auto& c : choices)
-    if (name == c.first)
-      return c.second;
-  LAMINA_CHECK(false, "'", name, "' is not a choice of the command line");
-  return choices[0].second;
-}
-
 /// --fftw-plan: FFTW planning.
 enum class FftwPlan { Auto, Estimate, Measure };
-constexpr Choices<FftwPlan, 3> kPlans{
-    {{"auto", FftwPlan::Auto}, {"estimate", FftwPlan::Estimate}, {"measure", FftwPlan::Measure}}};
+constexpr auto kPlans = lamina::core::enumNames<FftwPlan>(
+    {{"auto", FftwPlan::Auto}, {"estimate", FftwPlan::Estimate}, {"measure", FftwPlan::Measure}});
 
 /// --precision: precision of the preconditioner's FFTs (Auto: from --tol);
 /// single also makes the operator and the CG vectors float from --tol 1e-4
 /// up (homogenize::floatVectors).
 enum class PrecisionChoice { Auto, Single, Double };
-constexpr Choices<PrecisionChoice, 3> kPrecisions{{{"auto", PrecisionChoice::Auto},
-                                                   {"single", PrecisionChoice::Single},
-                                                   {"double", PrecisionChoice::Double}}};
+constexpr auto kPrecisions = lamina::core::enumNames<PrecisionChoice>(
+    {{"auto", PrecisionChoice::Auto},
+     {"single", PrecisionChoice::Single},
+     {"double", PrecisionChoice::Double}});
 
 /// --estimate: how C is formed from the six solutions.
-constexpr Choices<lamina::homogenize::Estimate, 2> kEstimates{
+constexpr auto kEstimates = lamina::core::enumNames<lamina::homogenize::Estimate>(
     {{"energy", lamina::homogenize::Estimate::Energy},
-     {"stress", lamina::homogenize::Estimate::Stress}}};
+     {"stress", lamina::homogenize::Estimate::Stress}});
 
 /// @return the `measure` of homogenize::Options: 1 yes, 0 no, -1 auto
 int measureFlag(FftwPlan plan) {
@@ -199,15 +177,15 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_option("--fftw-plan", names.plan,
                  "FFTW planning: estimate, measure (wisdom cached in ~/.cache/lamina), "
                  "auto (measure above 64^3)")
-      ->check(CLI::IsMember(namesOf(kPlans)));
+      ->check(CLI::IsMember(kPlans.names()));
   app.add_option("--estimate", names.estimate,
                  "C from the six solutions: energy (<eps_j:C:eps_k>, error quadratic in the "
                  "residual, keeps 6 displacement fields) or stress (<sigma_k>, least memory)")
-      ->check(CLI::IsMember(namesOf(kEstimates)));
+      ->check(CLI::IsMember(kEstimates.names()));
   app.add_option("--precision", names.precision,
                  "precision of the FFTs: auto (single when tol >= 1e-6), single, double; in "
                  "single from tol 1e-4 up the operator and the CG vectors are float too")
-      ->check(CLI::IsMember(namesOf(kPrecisions)));
+      ->check(CLI::IsMember(kPrecisions.names()));
   app.add_flag("--quiet", cli.quiet, "no progress line");
   // nonlinear: the cell under a strain-rate history (docs/homogenize-nonlinear.md)
   app.add_option("--path", names.path,
@@ -215,7 +193,7 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
                  "biaxial-stress (with "
                  "--out, --rate and --to are required; with --tangent-rates: the path to "
                  "--tangent-strain)")
-      ->check(CLI::IsMember(lamina::materials::drivePathNames()));
+      ->check(CLI::IsMember(lamina::materials::kDrivePathNames.names()));
   names.rate = app.add_option("--rate", cli.path.rate,
                               "nonlinear: driven strain rate (1/s, 1e-12 to 1e12; required "
                               "with --path ... --out)"); // range: materials::checkRate
@@ -261,14 +239,23 @@ void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names) {
                    ->check(CLI::NonNegativeNumber);
 }
 
+/// @return the value of @p name in @p choices (a core::EnumNames; @p name
+/// was checked by CLI::IsMember against its names())
+template <class Choices>
+auto valueOf(const Choices& choices, const std::string& name) {
+  const auto value = choices.parse(name);
+  LAMINA_CHECK(value, "'", name, "' is not a choice of the command line");
+  return *value;
+}
+
 /// Turns the checked strings of @p names into the enums of @p cli.
 void parseChoices(const CliNames& names, Cli& cli) {
   cli.plan = valueOf(kPlans, names.plan);
   cli.estimate = valueOf(kEstimates, names.estimate);
   cli.precision = valueOf(kPrecisions, names.precision);
   cli.path_given = !names.path.empty();
-  cli.path.path =
-      *lamina::materials::parseDrivePath(cli.path_given ? names.path : "uniaxial-strain");
+  if (cli.path_given)
+    cli.path.path = valueOf(lamina::materials::kDrivePathNames, names.path);
 }
 
 /// The one rule of a strain path (as `materials drive`): a --path run

@@ -28,14 +28,6 @@ namespace mat = lamina::materials;
 
 namespace {
 
-/// @return the --format names of mat::exportFormats(), for CLI::IsMember
-std::vector<std::string> formatNames() {
-  std::vector<std::string> names;
-  for (const auto& f : mat::exportFormats())
-    names.emplace_back(f.first);
-  return names;
-}
-
 std::string nowIso() {
   const std::time_t t = std::time(nullptr);
   char buf[32];
@@ -160,7 +152,7 @@ CLI::App* addDriveCommand(CLI::App& app, Args& a) {
   cmd->add_option("NAME", a.name, "library entry or catalog material")->required();
   cmd->add_option("--path", a.path_name,
                   "uniaxial-stress | biaxial-stress | uniaxial-strain | shear | confined")
-      ->check(CLI::IsMember(mat::drivePathNames()));
+      ->check(CLI::IsMember(mat::kDrivePathNames.names()));
   cmd->add_option("--rate", a.drive.rate, "driven strain rate (1/s, 1e-12 to 1e12; required)")
       ->required(); // range checked by checkRate (the same rule as homogenize)
   cmd->add_option("--to", a.drive.to,
@@ -172,7 +164,7 @@ CLI::App* addDriveCommand(CLI::App& app, Args& a) {
       ->check(CLI::Range(1, 100000000));
   cmd->add_option("--kinematics", a.kinematics,
                   "finite (rotation-free frame, J = det F; default) | small")
-      ->check(CLI::IsMember({"finite", "small"}));
+      ->check(CLI::IsMember(mat::kKinematicsNames.names()));
   cmd->add_option("--out", a.out, "CSV file to write")->required();
   cmd->add_option("--nonlinear-dispersion", a.nonlinear_dispersion,
                   "reduced-order entries: CSV of D_nonlin (eq. 40, kg/m) along the history");
@@ -218,7 +210,7 @@ Commands addCommands(CLI::App& app, Args& a) {
   c.export_card->add_option("NAME", a.name, "entry name")->required();
   c.export_card
       ->add_option("--format", a.format, "abaqus | calculix | lsdyna | lsdyna-small | json")
-      ->check(CLI::IsMember(formatNames()));
+      ->check(CLI::IsMember(mat::kExportFormatNames.names()));
   c.remove = app.add_subcommand("remove", "remove an entry");
   c.remove->add_option("NAME", a.name, "entry name")->required();
   c.drive = addDriveCommand(app, a);
@@ -315,8 +307,9 @@ void checkReducedOrderOptions(const Args& a, const mat::ConstitutiveLaw& law) {
 /// computed, then the point driven and its CSV (and, for a reduced-order
 /// law, its D_nonlin CSV) written.
 void driveEntry(Args a, const std::filesystem::path& library) {
-  a.drive.path = *mat::parseDrivePath(a.path_name);
-  a.drive.kinematics = a.kinematics == "small" ? mat::Kinematics::Small : mat::Kinematics::Finite;
+  // both names were checked by CLI::IsMember against the same tables
+  a.drive.path = *mat::kDrivePathNames.parse(a.path_name);
+  a.drive.kinematics = *mat::kKinematicsNames.parse(a.kinematics);
   mat::checkRate(a.drive.rate, "--rate");
   mat::checkFinalStrain(a.drive.path, a.drive.to, "--to");
   // never over a device, a FIFO, a directory, nor over the library or the catalog

@@ -177,24 +177,8 @@ nlohmann::json materialToJson(const Material& m) {
   return j;
 }
 
-const std::array<std::pair<const char*, ExportFormat>, 5>& exportFormats() {
-  static const std::array<std::pair<const char*, ExportFormat>, 5> formats{
-      {{"abaqus", ExportFormat::Abaqus},
-       {"calculix", ExportFormat::Calculix},
-       {"lsdyna", ExportFormat::Lsdyna},
-       {"lsdyna-small", ExportFormat::LsdynaSmall},
-       {"json", ExportFormat::Json}}};
-  return formats;
-}
-
 ExportFormat parseExportFormat(const std::string& name) {
-  std::string names;
-  for (const auto& [n, f] : exportFormats()) {
-    if (name == n)
-      return f;
-    names += (names.empty() ? "" : ", ") + std::string(n);
-  }
-  throw Error("unknown export format '" + name + "' (" + names + ")", {"--format", 0, name});
+  return kExportFormatNames.parseOrThrow(name, "export format", {"--format", 0, name});
 }
 
 std::string exportCard(const Material& m, ExportFormat format) {

@@ -18,6 +18,7 @@
 ///             columns per card, 3-4 significant digits) for older readers.
 /// - json:     the object of materialToJson().
 
+#include "core/enum_names.hpp"
 #include "materials/material.hpp"
 
 #include <nlohmann/json.hpp>
@@ -31,9 +32,13 @@ namespace lamina::materials {
 /// The card formats of exportCard().
 enum class ExportFormat { Abaqus, Calculix, Lsdyna, LsdynaSmall, Json };
 
-/// @return the name of every format ("abaqus", "calculix", "lsdyna",
-/// "lsdyna-small", "json"): the one table of the --format names
-const std::array<std::pair<const char*, ExportFormat>, 5>& exportFormats();
+/// The --format names of every format: the one table of them.
+inline constexpr auto kExportFormatNames =
+    core::enumNames<ExportFormat>({{"abaqus", ExportFormat::Abaqus},
+                                   {"calculix", ExportFormat::Calculix},
+                                   {"lsdyna", ExportFormat::Lsdyna},
+                                   {"lsdyna-small", ExportFormat::LsdynaSmall},
+                                   {"json", ExportFormat::Json}});
 
 /// @return the format named @p name; throws lamina::Error (naming --format) otherwise
 ExportFormat parseExportFormat(const std::string& name);

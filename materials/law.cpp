@@ -4,41 +4,21 @@
 
 #include <Eigen/Cholesky>
 
-#include <array>
-#include <utility>
+#include <string_view>
+#include <vector>
 
 namespace lamina::materials {
 
-namespace {
-constexpr std::array<std::pair<LawKind, const char*>, 5> kLawNames{{
-    {LawKind::Isotropic, "isotropic"},
-    {LawKind::TransverselyIsotropic, "transversely-isotropic"},
-    {LawKind::Anisotropic, "anisotropic"},
-    {LawKind::Gvbo, "gvbo"},
-    {LawKind::ReducedOrder, "reduced-order"},
-}};
-} // namespace
-
 const char* toString(LawKind k) {
-  for (const auto& [kind, name] : kLawNames)
-    if (kind == k)
-      return name;
-  return "?";
-}
-
-std::optional<LawKind> parseLawKind(const std::string& name) {
-  for (const auto& [kind, text] : kLawNames)
-    if (name == text)
-      return kind;
-  return std::nullopt;
+  return kLawKindNames.name(k).data(); // the table's names are literals: NUL-terminated
 }
 
 std::string lawKindNames() {
-  std::string out;
-  for (const auto& [kind, name] : kLawNames)
+  std::vector<std::string_view> names;
+  for (const auto& [name, kind] : kLawKindNames)
     if (kind != LawKind::ReducedOrder) // referred to by an entry's name, not given with keys
-      out += (out.empty() ? "" : ", ") + std::string(name);
-  return out;
+      names.push_back(name);
+  return core::choiceList(names);
 }
 
 double ConstitutiveLaw::storedEnergy(const Vector6& sigma, const double*, double J) const {

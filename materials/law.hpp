@@ -16,6 +16,7 @@
 /// A linear law (isLinear()) has no state and sigma = C eps: solvers keep
 /// their fast paths for it (per-phase C, no per-point update).
 
+#include "core/enum_names.hpp"
 #include "materials/stiffness.hpp"
 
 #include <memory>
@@ -36,12 +37,18 @@ enum class LawKind {
   ReducedOrder,
 };
 
+/// The file spellings of LawKind (parse, print, list).
+inline constexpr auto kLawKindNames =
+    core::enumNames<LawKind>({{"isotropic", LawKind::Isotropic},
+                              {"transversely-isotropic", LawKind::TransverselyIsotropic},
+                              {"anisotropic", LawKind::Anisotropic},
+                              {"gvbo", LawKind::Gvbo},
+                              {"reduced-order", LawKind::ReducedOrder}});
+
 /// @return the file spelling of @p k ("isotropic", ...)
 const char* toString(LawKind k);
-/// @return the law of file spelling @p name, or nothing if unknown
-std::optional<LawKind> parseLawKind(const std::string& name);
-/// @return the laws a file may give with keys, "isotropic,
-/// transversely-isotropic, anisotropic, gvbo" (for messages; not
+/// @return the laws a file may give with keys, for messages:
+/// "'isotropic', 'transversely-isotropic', 'anisotropic' or 'gvbo'" (not
 /// "reduced-order", which is referred to by an entry's name)
 std::string lawKindNames();
 

@@ -105,9 +105,9 @@ void writeLawSpec(std::ostream& os, const LawSpec& law) {
 
 LawSpec readLawSpec(const core::TableReader& t) {
   const std::string name = t.getString("law");
-  const std::optional<LawKind> kind = parseLawKind(name);
+  const std::optional<LawKind> kind = kLawKindNames.parse(name);
   if (!kind)
-    t.fail("law", "unknown law '" + name + "' (" + lawKindNames() + ")");
+    t.fail("law", "unknown law '" + name + "' (expected " + lawKindNames() + ")");
   if (*kind == LawKind::ReducedOrder)
     t.fail("law", kReducedOrderIsAnEntry);
   return readLawConstants(t, *kind);

@@ -15,14 +15,6 @@ namespace lamina::materials {
 
 namespace {
 
-constexpr std::array<std::pair<DrivePath, const char*>, 5> kPathNames{{
-    {DrivePath::UniaxialStress, "uniaxial-stress"},
-    {DrivePath::BiaxialStress, "biaxial-stress"},
-    {DrivePath::UniaxialStrain, "uniaxial-strain"},
-    {DrivePath::Shear, "shear"},
-    {DrivePath::Confined, "confined"},
-}};
-
 /// Deformation gradient of the path at driven strain e and lateral strains l.
 Eigen::Matrix3d pathF(DrivePath path, double e, const Eigen::Vector2d& l) {
   Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
@@ -116,24 +108,7 @@ private:
 } // namespace
 
 const char* toString(DrivePath p) {
-  for (const auto& [path, name] : kPathNames)
-    if (path == p)
-      return name;
-  return "?";
-}
-
-std::optional<DrivePath> parseDrivePath(const std::string& name) {
-  for (const auto& [path, text] : kPathNames)
-    if (name == text)
-      return path;
-  return std::nullopt;
-}
-
-std::vector<std::string> drivePathNames() {
-  std::vector<std::string> names;
-  for (const auto& entry : kPathNames)
-    names.emplace_back(entry.second);
-  return names;
+  return kDrivePathNames.name(p).data(); // the table's names are literals: NUL-terminated
 }
 
 void checkRate(double rate, const std::string& option, bool allow_infinite) {

@@ -23,6 +23,7 @@
 /// Output columns: t, eps = sym(F - I) (lamina order, engineering shear),
 /// Cauchy sigma (Pa).
 
+#include "core/enum_names.hpp"
 #include "materials/law.hpp"
 #include "materials/reduced_order_law.hpp"
 
@@ -36,15 +37,21 @@ namespace lamina::materials {
 
 /// The strain paths of `materials drive`.
 enum class DrivePath { UniaxialStress, BiaxialStress, UniaxialStrain, Shear, Confined };
+/// The command-line spellings of DrivePath (`--path` of materials drive and homogenize).
+inline constexpr auto kDrivePathNames =
+    core::enumNames<DrivePath>({{"uniaxial-stress", DrivePath::UniaxialStress},
+                                {"biaxial-stress", DrivePath::BiaxialStress},
+                                {"uniaxial-strain", DrivePath::UniaxialStrain},
+                                {"shear", DrivePath::Shear},
+                                {"confined", DrivePath::Confined}});
 /// @return the command-line spelling ("uniaxial-stress", ...)
 const char* toString(DrivePath p);
-/// @return the path of spelling @p name, or nothing
-std::optional<DrivePath> parseDrivePath(const std::string& name);
-/// @return every spelling of toString(DrivePath), in declaration order (for a CLI's check)
-std::vector<std::string> drivePathNames();
 
 /// Small strain (sym(F - I), J = 1 + tr eps, no rotation) or finite deformation.
 enum class Kinematics { Small, Finite };
+/// The spellings of Kinematics (`--kinematics` of materials drive).
+inline constexpr auto kKinematicsNames =
+    core::enumNames<Kinematics>({{"finite", Kinematics::Finite}, {"small", Kinematics::Small}});
 
 /// What to drive.
 struct DriveOptions {

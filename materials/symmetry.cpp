@@ -37,21 +37,7 @@ Symmetry classify(const Stiffness& c, double tol) {
 }
 
 std::string toString(SymmetryClass cls) {
-  switch (cls) {
-  case SymmetryClass::Isotropic:
-    return "isotropic";
-  case SymmetryClass::Cubic:
-    return "cubic";
-  case SymmetryClass::TransverselyIsotropic:
-    return "transversely isotropic";
-  case SymmetryClass::Orthotropic:
-    return "orthotropic";
-  case SymmetryClass::Monoclinic:
-    return "monoclinic";
-  case SymmetryClass::Triclinic:
-    return "triclinic";
-  }
-  return "triclinic";
+  return std::string(kSymmetryClassNames.name(cls));
 }
 
 } // namespace lamina::materials

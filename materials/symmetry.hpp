@@ -13,6 +13,7 @@
 /// - triclinic: none of these.
 /// Invariance means max |C' - C| <= tol * max |C|.
 
+#include "core/enum_names.hpp"
 #include "materials/stiffness.hpp"
 
 #include <string>
@@ -38,6 +39,15 @@ struct Symmetry {
 
 /// Detects the symmetry class of @p c with relative tolerance @p tol.
 Symmetry classify(const Stiffness& c, double tol = 1e-6);
+
+/// The printed names of SymmetryClass (summaries, provenance, JSON).
+inline constexpr auto kSymmetryClassNames = core::enumNames<SymmetryClass>(
+    {{"isotropic", SymmetryClass::Isotropic},
+     {"cubic", SymmetryClass::Cubic},
+     {"transversely isotropic", SymmetryClass::TransverselyIsotropic},
+     {"orthotropic", SymmetryClass::Orthotropic},
+     {"monoclinic", SymmetryClass::Monoclinic},
+     {"triclinic", SymmetryClass::Triclinic}});
 
 /// @return "isotropic", "cubic", "transversely isotropic", "orthotropic",
 /// "monoclinic" or "triclinic"

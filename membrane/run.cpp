@@ -517,7 +517,7 @@ private:
     s["reactions"] = reac;
     s["peak_reaction_total"] = peak_total_reaction_;
     s["max_displacement"] = max_disp_;
-    s["model"] = model_.kind == ModelKind::LargeDeflection ? "large_deflection" : "linear";
+    s["model"] = std::string(kModelKindNames.name(model_.kind));
     s["integrator"] = {{"name", sim.integrator().name()}, {"stable_dt", sim.stableStep()}};
     if (model_.time.integrator == IntegratorKind::Explicit)
       s["integrator"]["safety"] = sim.integrator().timeStep() / sim.stableStep();
@@ -534,7 +534,7 @@ private:
     }
     const SolverStats st = sim.integrator().stats();
     s["solver"] = {
-        {"type", linearSolverName(model_.time.solver)},
+        {"type", std::string(kLinearSolverKindNames.name(model_.time.solver))},
         {"mean_iterations", st.solves ? double(st.iterations) / double(st.solves) : 0.0}};
     s["wall_s"] = wall_s_;
     s["assembly_s"] = sim.assemblySeconds();

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace lamina::micro {
@@ -53,6 +54,9 @@ CatalogProvider lazyCatalog(const std::filesystem::path& path) {
 
 namespace {
 
+/// The axes a cell file names: "x", "y", "z" (0, 1, 2).
+constexpr auto kAxisNames = core::enumNames<int>({{"x", 0}, {"y", 1}, {"z", 2}});
+
 Eigen::Vector3d readVector3(const core::TableReader& t, const std::string& key) {
   const auto v = t.getDoubleArray(key);
   if (v.size() != 3)
@@ -65,10 +69,9 @@ Eigen::Vector3d readVector3(const core::TableReader& t, const std::string& key) 
 Eigen::Vector3i readLattice(const core::TableReader& t, const std::string& key) {
   const toml::node* n = t.tomlTable().get(key);
   if (n && n->is_string()) {
-    const std::string w = t.getString(key);
-    if (w == "x" || w == "y" || w == "z")
-      return Eigen::Vector3i::Unit(w[0] - 'x');
-    t.fail(key, "must be \"x\", \"y\", \"z\" or a vector");
+    if (const std::optional<int> axis = kAxisNames.parse(t.getString(key)))
+      return Eigen::Vector3i::Unit(*axis);
+    t.fail(key, "must be an axis (" + kAxisNames.list('"') + ") or a vector");
   }
   const Eigen::Vector3d d = readVector3(t, key);
   if (!(d.norm() > 0))
@@ -125,7 +128,7 @@ void readYarn(const core::TableReader& t, const CellSpec& cell, Inclusion& p) {
   p.setLattice(readLattice(t, "direction"));
   if (p.axis < 0)
     t.fail("direction", "a yarn runs along a cell axis: \"x\", \"y\" or \"z\"");
-  p.crimp = t.getChoice("crimp", {{"x", 0}, {"y", 1}, {"z", 2}}, p.axis == 2 ? -1 : 2);
+  p.crimp = t.getChoice("crimp", kAxisNames, p.axis == 2 ? -1 : 2);
   if (p.crimp < 0)
     t.fail("crimp", "required for a yarn along z: the axis it undulates along, \"x\" or \"y\"");
   if (p.crimp == p.axis)
@@ -144,25 +147,12 @@ void readYarn(const core::TableReader& t, const CellSpec& cell, Inclusion& p) {
                              " periods per cell");
 }
 
-InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::size_t index) {
-  InclusionGroup g;
-  g.key = "inclusions[" + std::to_string(index) + "]";
-  Inclusion& p = g.prototype;
-  const std::string phase = t.getString("phase");
-  p.phase = cell.phaseIndex(phase);
-  if (p.phase < 0)
-    t.fail("phase", "no phase named '" + phase + "'");
-  if (p.phase == 0)
-    t.fail("phase", "inclusions cannot be made of the matrix (the first phase)");
+/// The keys of an inclusion's `shape` (docs/homogenize.md): radius,
+/// semi_axes and orientation, direction, thickness and normal, or a yarn's.
+void readShape(const core::TableReader& t, const CellSpec& cell, Inclusion& p) {
   if (!t.has("shape"))
-    t.fail("shape", "required: sphere, ellipsoid, fiber, layer or yarn");
-  p.shape = t.getChoice("shape",
-                        {{"sphere", Shape::Sphere},
-                         {"ellipsoid", Shape::Ellipsoid},
-                         {"fiber", Shape::Fiber},
-                         {"layer", Shape::Layer},
-                         {"yarn", Shape::Yarn}},
-                        Shape::Sphere);
+    t.fail("shape", "required: " + kShapeNames.list('"'));
+  p.shape = t.getChoice("shape", kShapeNames);
   switch (p.shape) {
   case Shape::Sphere:
     p.semi.setConstant(positive(t, "radius"));
@@ -192,32 +182,41 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
     readYarn(t, cell, p);
     break;
   }
-  g.placement = t.getChoice("placement",
-                            {{"single", Placement::Single},
-                             {"lattice", Placement::Lattice},
-                             {"random", Placement::Random}},
-                            Placement::Single);
+}
+
+/// `lattice = [n1, n2, n3]`: positive integer counts, at most
+/// kMaxInclusions copies in all.
+std::array<int, 3> readLatticeCounts(const core::TableReader& t) {
+  const auto c = t.getDoubleArray("lattice");
+  if (c.size() != 3)
+    t.fail("lattice", "must give 3 counts [n1, n2, n3]");
+  std::array<int, 3> counts{};
+  double copies = 1;
+  for (int i = 0; i < 3; ++i) {
+    const double ci = c[static_cast<std::size_t>(i)];
+    if (!(ci >= 1) || ci != std::floor(ci))
+      t.fail("lattice", "counts must be positive integers");
+    copies *= ci;
+    if (copies > static_cast<double>(kMaxInclusions))
+      t.fail("lattice", "at most " + std::to_string(kMaxInclusions) +
+                            " inclusions per cell (placement tests every pair)");
+    counts[static_cast<std::size_t>(i)] = static_cast<int>(ci);
+  }
+  return counts;
+}
+
+/// The keys of a group's `placement`: center (single), lattice, or seed and
+/// max_attempts (random).
+void readPlacement(const core::TableReader& t, const CellSpec& cell, InclusionGroup& g) {
+  Inclusion& p = g.prototype;
+  g.placement = t.getChoice("placement", kPlacementNames, Placement::Single);
   switch (g.placement) {
   case Placement::Single:
     p.center = t.has("center") ? readVector3(t, "center") : Eigen::Vector3d(0.5 * cell.size);
     break;
-  case Placement::Lattice: {
-    const auto c = t.getDoubleArray("lattice");
-    if (c.size() != 3)
-      t.fail("lattice", "must give 3 counts [n1, n2, n3]");
-    double copies = 1;
-    for (int i = 0; i < 3; ++i) {
-      const double ci = c[static_cast<std::size_t>(i)];
-      if (!(ci >= 1) || ci != std::floor(ci))
-        t.fail("lattice", "counts must be positive integers");
-      copies *= ci;
-      if (copies > static_cast<double>(kMaxInclusions))
-        t.fail("lattice", "at most " + std::to_string(kMaxInclusions) +
-                              " inclusions per cell (placement tests every pair)");
-      g.lattice[static_cast<std::size_t>(i)] = static_cast<int>(ci);
-    }
+  case Placement::Lattice:
+    g.lattice = readLatticeCounts(t);
     break;
-  }
   case Placement::Random:
     if (p.shape == Shape::Yarn)
       t.fail("placement", "yarns are placed with single (center) or lattice");
@@ -225,6 +224,11 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
     g.max_attempts = static_cast<int>(t.getIntIn("max_attempts", 1, kMaxAttempts, 200000));
     break;
   }
+}
+
+/// The keys of how much a group places: count (random), volume_fraction,
+/// min_gap; and seed refused where nothing is random.
+void readAmount(const core::TableReader& t, InclusionGroup& g) {
   if (t.has("count")) {
     if (g.placement != Placement::Random)
       t.fail("count", "count applies to random placement (use lattice = [n1, n2, n3])");
@@ -243,72 +247,90 @@ InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::
     t.fail("min_gap", "must not be negative");
   if (g.placement == Placement::Single && t.has("seed"))
     t.fail("seed", "seed applies to random placement");
+}
+
+/// One `[[inclusions]]` table (the @p index-th): its phase, shape,
+/// placement and amount.
+InclusionGroup readGroup(const core::TableReader& t, const CellSpec& cell, std::size_t index) {
+  InclusionGroup g;
+  g.key = "inclusions[" + std::to_string(index) + "]";
+  Inclusion& p = g.prototype;
+  const std::string phase = t.getString("phase");
+  p.phase = cell.phaseIndex(phase);
+  if (p.phase < 0)
+    t.fail("phase", "no phase named '" + phase + "'");
+  if (p.phase == 0)
+    t.fail("phase", "inclusions cannot be made of the matrix (the first phase)");
+  readShape(t, cell, p);
+  readPlacement(t, cell, g);
+  readAmount(t, g);
   return g;
 }
 
-} // namespace
-
-CellSpec readCellString(const std::string& text, const std::string& source,
-                        const CatalogProvider& catalog) {
-  const toml::table doc = core::parseTomlString(text, source);
-  core::TableReader root(doc, source);
-  CellSpec cell;
-  cell.file = source;
-  cell.text = text;
-  const core::TableReader c = root.table("cell");
-  cell.description = c.getString("description", "");
-  if (c.has("image")) {
-    cell.image = readImageSource(c, source);
-    if (c.has("voxel_size")) {
-      const toml::node* v = c.tomlTable().get("voxel_size");
-      cell.voxel_size = v->is_array() ? readVector3(c, "voxel_size")
-                                      : Eigen::Vector3d::Constant(c.getDouble("voxel_size"));
-      if (!(cell.voxel_size->minCoeff() > 0))
-        c.fail("voxel_size", "voxel edge lengths must be positive");
-      cell.physical_size = true; // metres, like size: the cell has a scale
-    }
-    const std::array<int, 3> shape = imageShape(*cell.image);
-    if (c.has("resolution")) {
-      const auto v = numberList(c, "resolution");
-      if (std::array<int, 3>{v[0], v[1], v[2]} != shape)
-        c.fail("resolution", "size mismatch: the image gives " + std::to_string(shape[0]) + " x " +
-                                 std::to_string(shape[1]) + " x " + std::to_string(shape[2]) +
-                                 " voxels (after crop and downsample); drop resolution or fix it");
-    }
-    cell.resolution = shape;
-    if (cell.voxel_size) {
-      cell.size = cell.voxel_size->cwiseProduct(Eigen::Vector3d(shape[0], shape[1], shape[2]));
-      if (!(cell.size.maxCoeff() <= kMaxCellEdge))
-        c.fail("voxel_size", "voxel sizes are in metres; the cell would be " +
-                                 core::formatShort(cell.size.maxCoeff()) + " m across (limit " +
-                                 core::formatShort(kMaxCellEdge) + " m)");
-    }
-  } else {
-    std::string key;
-    if (hasImageKey(c, key))
-      c.fail(key, "applies to image cells (image = \"PATH\") only");
-    if (!c.tomlTable().get("resolution"))
-      c.fail("resolution", "required: N or [N1, N2, N3]");
+/// [cell] of an image cell: the image, its voxel_size (a scale) and a
+/// resolution, if given, checked against the image's shape.
+void readImageCell(const core::TableReader& c, CellSpec& cell) {
+  cell.image = readImageSource(c, cell.file);
+  if (c.has("voxel_size")) {
+    const toml::node* v = c.tomlTable().get("voxel_size");
+    cell.voxel_size = v->is_array() ? readVector3(c, "voxel_size")
+                                    : Eigen::Vector3d::Constant(c.getDouble("voxel_size"));
+    if (!(cell.voxel_size->minCoeff() > 0))
+      c.fail("voxel_size", "voxel edge lengths must be positive");
+    cell.physical_size = true; // metres, like size: the cell has a scale
+  }
+  const std::array<int, 3> shape = imageShape(*cell.image);
+  if (c.has("resolution")) {
     const auto v = numberList(c, "resolution");
-    cell.resolution = {v[0], v[1], v[2]};
-    if (c.has("composite_voxels"))
-      cell.composite_voxels = c.getBool("composite_voxels", true);
+    if (std::array<int, 3>{v[0], v[1], v[2]} != shape)
+      c.fail("resolution", "size mismatch: the image gives " + std::to_string(shape[0]) + " x " +
+                               std::to_string(shape[1]) + " x " + std::to_string(shape[2]) +
+                               " voxels (after crop and downsample); drop resolution or fix it");
   }
-  if (c.has("size")) {
-    const toml::node* s = c.tomlTable().get("size");
-    if (s->is_array())
-      cell.size = readVector3(c, "size");
-    else
-      cell.size.setConstant(c.getDouble("size"));
-    if (!(cell.size.minCoeff() > 0))
-      c.fail("size", "edge lengths must be positive");
+  cell.resolution = shape;
+  if (cell.voxel_size) {
+    cell.size = cell.voxel_size->cwiseProduct(Eigen::Vector3d(shape[0], shape[1], shape[2]));
     if (!(cell.size.maxCoeff() <= kMaxCellEdge))
-      c.fail("size", "edge lengths are in metres; " + core::formatShort(cell.size.maxCoeff()) +
-                         " m is not a unit cell (limit " + core::formatShort(kMaxCellEdge) +
-                         " m). Give the physical size (e.g. size = 20e-6), or leave size out "
-                         "for a scale-free cell without micro-inertia");
-    cell.physical_size = true;
+      c.fail("voxel_size", "voxel sizes are in metres; the cell would be " +
+                               core::formatShort(cell.size.maxCoeff()) + " m across (limit " +
+                               core::formatShort(kMaxCellEdge) + " m)");
   }
+}
+
+/// [cell] of a generated cell: resolution (required), composite_voxels;
+/// the keys of image cells refused.
+void readGeneratedCell(const core::TableReader& c, CellSpec& cell) {
+  std::string key;
+  if (hasImageKey(c, key))
+    c.fail(key, "applies to image cells (image = \"PATH\") only");
+  if (!c.tomlTable().get("resolution"))
+    c.fail("resolution", "required: N or [N1, N2, N3]");
+  const auto v = numberList(c, "resolution");
+  cell.resolution = {v[0], v[1], v[2]};
+  if (c.has("composite_voxels"))
+    cell.composite_voxels = c.getBool("composite_voxels", true);
+}
+
+/// [cell] size: edge lengths in metres (a scalar for a cube).
+void readSize(const core::TableReader& c, CellSpec& cell) {
+  const toml::node* s = c.tomlTable().get("size");
+  if (s->is_array())
+    cell.size = readVector3(c, "size");
+  else
+    cell.size.setConstant(c.getDouble("size"));
+  if (!(cell.size.minCoeff() > 0))
+    c.fail("size", "edge lengths must be positive");
+  if (!(cell.size.maxCoeff() <= kMaxCellEdge))
+    c.fail("size", "edge lengths are in metres; " + core::formatShort(cell.size.maxCoeff()) +
+                       " m is not a unit cell (limit " + core::formatShort(kMaxCellEdge) +
+                       " m). Give the physical size (e.g. size = 20e-6), or leave size out "
+                       "for a scale-free cell without micro-inertia");
+  cell.physical_size = true;
+}
+
+/// [[phases]]: at least one (the first is the matrix), distinct names and
+/// ids (an image cell needs an id on each), at most one J sweep.
+void readPhases(const core::TableReader& root, const CatalogProvider& catalog, CellSpec& cell) {
   const auto phases = root.tableArray("phases");
   if (phases.empty())
     root.fail("phases", "at least one [[phases]] table is required (the first is the matrix)");
@@ -334,6 +356,26 @@ CellSpec readCellString(const std::string& text, const std::string& source,
   for (std::size_t i = 0; i < phases.size(); ++i)
     if (cell.phases[i].J.size() > 1 && ++swept > 1)
       phases[i].fail("J", "only one phase may carry a list of J states");
+}
+
+} // namespace
+
+CellSpec readCellString(const std::string& text, const std::string& source,
+                        const CatalogProvider& catalog) {
+  const toml::table doc = core::parseTomlString(text, source);
+  core::TableReader root(doc, source);
+  CellSpec cell;
+  cell.file = source;
+  cell.text = text;
+  const core::TableReader c = root.table("cell");
+  cell.description = c.getString("description", "");
+  if (c.has("image"))
+    readImageCell(c, cell);
+  else
+    readGeneratedCell(c, cell);
+  if (c.has("size"))
+    readSize(c, cell);
+  readPhases(root, catalog, cell);
   const auto groups = root.tableArray("inclusions");
   if (cell.image && !groups.empty())
     groups[0].failHere("an image cell takes its voxels from the image: no [[inclusions]]");

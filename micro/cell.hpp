@@ -26,6 +26,7 @@
 /// min_gap = 0.02
 /// ```
 
+#include "core/enum_names.hpp"
 #include "micro/inclusion.hpp"
 #include "micro/phase.hpp"
 #include "micro/voxel_image.hpp"
@@ -56,6 +57,10 @@ inline constexpr std::int64_t kMaxOverlapTests = 400000000;
 
 /// How the inclusions of a group are placed.
 enum class Placement { Single, Lattice, Random };
+/// The cell-file names of Placement (`placement` of an [[inclusions]] table).
+inline constexpr auto kPlacementNames = core::enumNames<Placement>({{"single", Placement::Single},
+                                                                    {"lattice", Placement::Lattice},
+                                                                    {"random", Placement::Random}});
 
 /// One `[[inclusions]]` table: a prototype inclusion and how to place copies.
 struct InclusionGroup {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <tuple>
 
 namespace lamina::micro {
@@ -275,65 +276,116 @@ materials::Stiffness laminateStiffness(const materials::Stiffness& C1,
   return materials::Stiffness(0.5 * (C + C.transpose()));
 }
 
+namespace {
+
+/// A voxel an inclusion cuts: the voxel, the inclusion, the fraction inside.
+struct Cut {
+  std::size_t index;
+  int which;
+  double f;
+};
+
+/// @return (voxel, fraction inside) of every voxel of the grid @p n (edges
+/// @p h, cell @p size) that @p inc cuts, in no fixed order
+std::vector<std::pair<std::size_t, double>> voxelsCutBy(const Inclusion& inc,
+                                                        const std::array<int, 3>& n,
+                                                        const Eigen::Vector3d& size,
+                                                        const Eigen::Vector3d& h) {
+  const InsideQuery query(inc, size);
+  std::array<int, 3> lo{}, hi{};
+  voxelRange(inc, n, size, lo, hi);
+  std::vector<std::pair<std::size_t, double>> found;
+  core::ParallelErrors errors; // allocation, a query refusing a shape
+#pragma omp parallel
+  {
+    std::vector<std::pair<std::size_t, double>> mine;
+#pragma omp for schedule(dynamic)
+    for (int i = lo[0]; i <= hi[0]; ++i)
+      errors.run([&] {
+        for (int j = lo[1]; j <= hi[1]; ++j)
+          for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
+            // a run of voxels wholly on one side: no voxel of it is cut
+            const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
+            if (inc.shape != Shape::Layer && query.runSide(i, j, k0, k1, h) != 0)
+              continue;
+            for (int k = k0; k <= k1; ++k) {
+              const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
+              double f = 0;
+              if (inc.shape == Shape::Layer) {
+                f = layerFraction(inc, corner + 0.5 * h, h, size);
+                const bool centre = query.contains(corner + 0.5 * h);
+                if ((f == 0 && !centre) || (f == 1 && centre))
+                  continue; // whole voxel on the side its centre sampled
+              } else {
+                // voxels wholly on one side (all 8 corners agree) need no corner tests
+                if (query.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
+                  continue;
+                f = sampledFraction(inc, query, corner, h, size);
+                if (f < 0)
+                  continue;
+              }
+              const std::size_t idx = wrappedVoxelIndex(i, j, k, n);
+              mine.emplace_back(idx, f);
+            }
+          }
+      });
+#pragma omp critical
+    errors.run([&] { found.insert(found.end(), mine.begin(), mine.end()); });
+  }
+  errors.rethrow();
+  return found;
+}
+
+/// @return the composite voxel of the @p count cuts @p list of voxel
+/// @p idx (sorted by inclusion), or nothing: several phases cut it (it
+/// keeps the centre's phase), or every sub-sample agrees (then @p phase of
+/// the voxel is set to the side they agree on)
+std::optional<CompositeVoxel> compositeOf(const Cut* list, std::size_t count, std::size_t idx,
+                                          const std::vector<Inclusion>& inclusions,
+                                          const std::array<int, 3>& n, const Eigen::Vector3d& size,
+                                          const Eigen::Vector3d& h,
+                                          std::vector<std::int32_t>& phase) {
+  // Inclusions never overlap, so the fractions of several inclusions of
+  // one phase in a voxel add up (two crossing yarns, neighbouring
+  // spheres); the normal is that of the interface nearest to halving the
+  // voxel (a yarn-matrix-yarn sandwich has one normal up to its sign, to
+  // which the laminate is blind). Inclusions of different phases: three
+  // phases in one voxel, keep the centre's phase.
+  std::size_t lead = 0;
+  double f = 0;
+  bool onePhase = true;
+  for (std::size_t q = 0; q < count; ++q) {
+    const double fq = list[q].f;
+    onePhase = onePhase && inclusions[static_cast<std::size_t>(list[q].which)].phase ==
+                               inclusions[static_cast<std::size_t>(list[0].which)].phase;
+    f += fq;
+    if (std::min(fq, 1 - fq) > std::min(list[lead].f, 1 - list[lead].f))
+      lead = q;
+  }
+  if (!onePhase)
+    return std::nullopt;
+  f = std::min(f, 1.0);
+  const Inclusion& inc = inclusions[static_cast<std::size_t>(list[lead].which)];
+  if (f == 0 || f == 1) { // corners differ but every sub-sample agrees
+    phase[idx] = f == 1 ? inc.phase : 0;
+    return std::nullopt;
+  }
+  const Eigen::Vector3d centre = voxelCentre(idx, n, h);
+  return CompositeVoxel{idx, inc.phase, 0, f, inc.normalAt(centre, size), list[lead].which};
+}
+
+} // namespace
+
 std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& inclusions,
                                                 const std::array<int, 3>& n,
                                                 const Eigen::Vector3d& size,
                                                 std::vector<std::int32_t>& phase) {
   const Eigen::Vector3d h(size[0] / n[0], size[1] / n[1], size[2] / n[2]);
   // (voxel, inclusion, fraction) of every inclusion that cuts a voxel
-  struct Cut {
-    std::size_t index;
-    int which;
-    double f;
-  };
   std::vector<Cut> cut;
-  for (std::size_t q = 0; q < inclusions.size(); ++q) {
-    const Inclusion& inc = inclusions[q];
-    const InsideQuery query(inc, size);
-    std::array<int, 3> lo{}, hi{};
-    voxelRange(inc, n, size, lo, hi);
-    std::vector<std::pair<std::size_t, double>> found;
-    core::ParallelErrors errors; // allocation, a query refusing a shape
-#pragma omp parallel
-    {
-      std::vector<std::pair<std::size_t, double>> mine;
-#pragma omp for schedule(dynamic)
-      for (int i = lo[0]; i <= hi[0]; ++i)
-        errors.run([&] {
-          for (int j = lo[1]; j <= hi[1]; ++j)
-            for (int k0 = lo[2]; k0 <= hi[2]; k0 += kVoxelRun) {
-              // a run of voxels wholly on one side: no voxel of it is cut
-              const int k1 = std::min(k0 + kVoxelRun - 1, hi[2]);
-              if (inc.shape != Shape::Layer && query.runSide(i, j, k0, k1, h) != 0)
-                continue;
-              for (int k = k0; k <= k1; ++k) {
-                const Eigen::Vector3d corner(i * h[0], j * h[1], k * h[2]);
-                double f = 0;
-                if (inc.shape == Shape::Layer) {
-                  f = layerFraction(inc, corner + 0.5 * h, h, size);
-                  const bool centre = query.contains(corner + 0.5 * h);
-                  if ((f == 0 && !centre) || (f == 1 && centre))
-                    continue; // whole voxel on the side its centre sampled
-                } else {
-                  // voxels wholly on one side (all 8 corners agree) need no corner tests
-                  if (query.boxSide(corner + 0.5 * h, 0.5 * h) != 0)
-                    continue;
-                  f = sampledFraction(inc, query, corner, h, size);
-                  if (f < 0)
-                    continue;
-                }
-                const std::size_t idx = wrappedVoxelIndex(i, j, k, n);
-                mine.emplace_back(idx, f);
-              }
-            }
-        });
-#pragma omp critical
-      errors.run([&] { found.insert(found.end(), mine.begin(), mine.end()); });
-    }
-    errors.rethrow();
-    for (const auto& [idx, f] : found)
+  for (std::size_t q = 0; q < inclusions.size(); ++q)
+    for (const auto& [idx, f] : voxelsCutBy(inclusions[q], n, size, h))
       cut.push_back({idx, static_cast<int>(q), f});
-  }
   // by voxel, each voxel's inclusions in their order
   std::sort(cut.begin(), cut.end(), [](const Cut& a, const Cut& b) {
     return a.index != b.index ? a.index < b.index : a.which < b.which;
@@ -343,34 +395,8 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
     const std::size_t idx = cut[first].index;
     while (last < cut.size() && cut[last].index == idx)
       ++last;
-    const Cut* list = &cut[first];
-    // Inclusions never overlap, so the fractions of several inclusions of
-    // one phase in a voxel add up (two crossing yarns, neighbouring
-    // spheres); the normal is that of the interface nearest to halving the
-    // voxel (a yarn-matrix-yarn sandwich has one normal up to its sign, to
-    // which the laminate is blind). Inclusions of different phases: three
-    // phases in one voxel, keep the centre's phase.
-    std::size_t lead = 0;
-    double f = 0;
-    bool onePhase = true;
-    for (std::size_t q = 0; q < last - first; ++q) {
-      const double fq = list[q].f;
-      onePhase = onePhase && inclusions[static_cast<std::size_t>(list[q].which)].phase ==
-                                 inclusions[static_cast<std::size_t>(list[0].which)].phase;
-      f += fq;
-      if (std::min(fq, 1 - fq) > std::min(list[lead].f, 1 - list[lead].f))
-        lead = q;
-    }
-    if (!onePhase)
-      continue;
-    f = std::min(f, 1.0);
-    const Inclusion& inc = inclusions[static_cast<std::size_t>(list[lead].which)];
-    if (f == 0 || f == 1) { // corners differ but every sub-sample agrees
-      phase[idx] = f == 1 ? inc.phase : 0;
-      continue;
-    }
-    const Eigen::Vector3d centre = voxelCentre(idx, n, h);
-    out.push_back({idx, inc.phase, 0, f, inc.normalAt(centre, size), list[lead].which});
+    if (auto v = compositeOf(&cut[first], last - first, idx, inclusions, n, size, h, phase))
+      out.push_back(*v);
   }
   return out; // in voxel order
 }

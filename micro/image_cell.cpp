@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 namespace lamina::micro {
@@ -17,6 +18,8 @@ constexpr const char* kImageKeys[] = {"format",     "dataset",    "axes",       
 
 /// byte_order of a raw image.
 enum class ByteOrder { Little, Big };
+constexpr auto kByteOrderNames =
+    core::enumNames<ByteOrder>({{"little", ByteOrder::Little}, {"big", ByteOrder::Big}});
 
 std::array<int, 3> readCounts(const core::TableReader& t, const std::string& key, int min) {
   const auto v = t.getDoubleArray(key);
@@ -51,11 +54,14 @@ ImageSource readImageSource(const core::TableReader& c, const std::string& cell_
   s.path = std::filesystem::path(cell_file).parent_path() / rel;
   if (c.has("format")) {
     const std::string f = c.getString("format");
-    if (!parseImageFormat(f, s.format))
-      c.fail("format", "unknown image format '" + f + "' (hdf5, vti, raw, tiff)");
+    const std::optional<ImageFormat> format = kImageFormatNames.parse(f);
+    if (!format)
+      c.fail("format",
+             "unknown image format '" + f + "' (expected " + kImageFormatNames.list() + ")");
+    s.format = *format;
   } else if (!formatFromExtension(s.path, s.format)) {
-    c.fail("image", "cannot tell the format of '" + rel +
-                        "' from its extension (.h5, .vti, .raw, .tif): give format = \"...\"");
+    c.fail("image", "cannot tell the format of '" + rel + "' from its extension (" +
+                        kImageExtensions.list() + "): give format = \"...\"");
   }
   const bool raw = s.format == ImageFormat::Raw;
   for (const char* k : {"type", "byte_order", "header_bytes"})
@@ -75,13 +81,11 @@ ImageSource readImageSource(const core::TableReader& c, const std::string& cell_
     if (!c.has("dimensions"))
       c.fail("dimensions", "a raw image needs dimensions = [Nx, Ny, Nz]");
     const std::string t = c.getString("type");
-    if (!parseScalarType(t, s.type))
-      c.fail("type", "unknown type '" + t +
-                         "' (int8, uint8, int16, uint16, int32, uint32, "
-                         "int64, uint64)");
-    s.big_endian =
-        c.getChoice("byte_order", {{"little", ByteOrder::Little}, {"big", ByteOrder::Big}},
-                    ByteOrder::Little) == ByteOrder::Big;
+    const std::optional<ScalarType> type = kScalarTypeNames.parse(t);
+    if (!type)
+      c.fail("type", "unknown type '" + t + "' (expected " + kScalarTypeNames.list() + ")");
+    s.type = *type;
+    s.big_endian = c.getChoice("byte_order", kByteOrderNames, ByteOrder::Little) == ByteOrder::Big;
     const auto hb = c.getInt("header_bytes", 0);
     if (hb < 0)
       c.fail("header_bytes", "must not be negative");
@@ -92,7 +96,7 @@ ImageSource readImageSource(const core::TableReader& c, const std::string& cell_
     if (s.format != ImageFormat::Hdf5 && !raw)
       c.fail("axes", "applies to HDF5 and raw images (VTI and TIFF store x fastest)");
     // "xyz": x slowest, "zyx": x fastest
-    s.axes = c.getChoice("axes", {{"xyz", AxisOrder::Xyz}, {"zyx", AxisOrder::Zyx}}, s.axes);
+    s.axes = c.getChoice("axes", kAxisOrderNames, s.axes);
   }
   if (auto crop = c.optionalTable("crop")) {
     s.crop_start = crop->has("start") ? readCounts(*crop, "start", 0) : std::array<int, 3>{};

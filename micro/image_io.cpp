@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 
 namespace lamina::micro {
 
@@ -15,77 +16,18 @@ bool formatFromExtension(const std::filesystem::path& path, ImageFormat& out) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".h5" || ext == ".hdf5" || ext == ".he5" || ext == ".dream3d")
-    out = ImageFormat::Hdf5;
-  else if (ext == ".vti")
-    out = ImageFormat::Vti;
-  else if (ext == ".raw" || ext == ".bin")
-    out = ImageFormat::Raw;
-  else if (ext == ".tif" || ext == ".tiff")
-    out = ImageFormat::Tiff;
-  else
-    return false;
-  return true;
-}
-
-bool parseImageFormat(const std::string& w, ImageFormat& out) {
-  for (ImageFormat f : {ImageFormat::Hdf5, ImageFormat::Vti, ImageFormat::Raw, ImageFormat::Tiff})
-    if (w == toString(f)) {
-      out = f;
-      return true;
-    }
-  return false;
+  const std::optional<ImageFormat> format = kImageExtensions.parse(ext);
+  if (format)
+    out = *format;
+  return format.has_value();
 }
 
 std::string toString(ImageFormat f) {
-  switch (f) {
-  case ImageFormat::Hdf5:
-    return "hdf5";
-  case ImageFormat::Vti:
-    return "vti";
-  case ImageFormat::Raw:
-    return "raw";
-  case ImageFormat::Tiff:
-    return "tiff";
-  }
-  return "?";
-}
-
-namespace {
-constexpr ScalarType kAllTypes[] = {ScalarType::Int8,   ScalarType::UInt8, ScalarType::Int16,
-                                    ScalarType::UInt16, ScalarType::Int32, ScalarType::UInt32,
-                                    ScalarType::Int64,  ScalarType::UInt64};
-} // namespace
-
-bool parseScalarType(const std::string& w, ScalarType& out) {
-  for (ScalarType t : kAllTypes)
-    if (w == toString(t)) {
-      out = t;
-      return true;
-    }
-  return false;
+  return std::string(kImageFormatNames.name(f));
 }
 
 std::string toString(ScalarType t) {
-  switch (t) {
-  case ScalarType::Int8:
-    return "int8";
-  case ScalarType::UInt8:
-    return "uint8";
-  case ScalarType::Int16:
-    return "int16";
-  case ScalarType::UInt16:
-    return "uint16";
-  case ScalarType::Int32:
-    return "int32";
-  case ScalarType::UInt32:
-    return "uint32";
-  case ScalarType::Int64:
-    return "int64";
-  case ScalarType::UInt64:
-    return "uint64";
-  }
-  return "?";
+  return std::string(kScalarTypeNames.name(t));
 }
 
 int bytesOf(ScalarType t) {

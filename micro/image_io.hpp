@@ -10,6 +10,7 @@
 /// the file and the key or dataset: a missing dataset, a wrong rank or type,
 /// a truncated file, a size that does not match the cell.
 
+#include "core/enum_names.hpp"
 #include "micro/voxel_image.hpp"
 
 namespace lamina::micro {
@@ -20,6 +21,11 @@ enum class VtiEncoding {
   Binary,   ///< base64 inside the DataArray element (format="binary")
   Appended, ///< raw bytes in the AppendedData section (format="appended", encoding="raw")
 };
+/// The names of VtiEncoding (`micro --vti-encoding`).
+inline constexpr auto kVtiEncodingNames =
+    core::enumNames<VtiEncoding>({{"ascii", VtiEncoding::Ascii},
+                                  {"binary", VtiEncoding::Binary},
+                                  {"appended", VtiEncoding::Appended}});
 
 /// Options of writeImage.
 struct ImageWriteOptions {

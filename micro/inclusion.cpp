@@ -8,19 +8,7 @@
 namespace lamina::micro {
 
 std::string toString(Shape s) {
-  switch (s) {
-  case Shape::Sphere:
-    return "sphere";
-  case Shape::Ellipsoid:
-    return "ellipsoid";
-  case Shape::Fiber:
-    return "fiber";
-  case Shape::Layer:
-    return "layer";
-  case Shape::Yarn:
-    return "yarn";
-  }
-  return "?";
+  return std::string(kShapeNames.name(s));
 }
 
 Eigen::Vector3d nearestImage(Eigen::Vector3d d, const Eigen::Vector3d& L) {

@@ -16,6 +16,8 @@
 /// Lengths are in the units of the cell size. Positions are periodic:
 /// distances use the nearest image.
 
+#include "core/enum_names.hpp"
+
 #include <Eigen/Dense>
 
 #include <string>
@@ -25,6 +27,13 @@ namespace lamina::micro {
 
 /// Kinds of inclusion.
 enum class Shape { Sphere, Ellipsoid, Fiber, Layer, Yarn };
+
+/// The cell-file names of Shape (`shape` of an [[inclusions]] table).
+inline constexpr auto kShapeNames = core::enumNames<Shape>({{"sphere", Shape::Sphere},
+                                                            {"ellipsoid", Shape::Ellipsoid},
+                                                            {"fiber", Shape::Fiber},
+                                                            {"layer", Shape::Layer},
+                                                            {"yarn", Shape::Yarn}});
 
 /// @return the name of @p s
 std::string toString(Shape s);

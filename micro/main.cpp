@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
                  "phase map: .h5 (+ .xdmf beside it), .vti, .raw or .tif (labels = phase ids)")
       ->required();
   app.add_option("--vti-encoding", encoding, "VTI data: ascii, binary (base64) or appended (raw)")
-      ->check(CLI::IsMember({"ascii", "binary", "appended"}));
+      ->check(CLI::IsMember(lamina::micro::kVtiEncodingNames.names()));
   app.add_flag("--zlib", zlib, "VTI binary/appended: zlib-compressed blocks");
   app.add_option("--resolution", resolution, "override the cell's resolution (N^3 voxels)");
   app.add_option("--catalog", catalog, "catalog file (default: $LAMINA_CATALOG or the built-in)");
@@ -76,8 +76,8 @@ int main(int argc, char** argv) {
       names.push_back(p.name);
     ImageFormat format = ImageFormat::Hdf5;
     if (!formatFromExtension(out, format))
-      throw lamina::Error("--out: cannot tell the format from the extension (.h5, .vti, .raw, "
-                          ".tif)",
+      throw lamina::Error("--out: cannot tell the format from the extension (expected " +
+                              kImageExtensions.list() + ")",
                           {out, 0, "--out"});
     const VoxelImage labels = labelImage(spec, cell);
     std::string keys;
@@ -89,9 +89,7 @@ int main(int argc, char** argv) {
              "\"\ndataset = \"/phases\"\n";
     } else {
       ImageWriteOptions wo;
-      wo.vti = encoding == "ascii"    ? VtiEncoding::Ascii
-               : encoding == "binary" ? VtiEncoding::Binary
-                                      : VtiEncoding::Appended;
+      wo.vti = *kVtiEncodingNames.parse(encoding); // checked by CLI::IsMember
       wo.zlib = zlib;
       keys = writeImage(labels, out, format, wo);
     }

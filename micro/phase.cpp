@@ -38,7 +38,7 @@ Phase readPhase(const core::TableReader& t, const CatalogProvider& catalog) {
     ph.C = e.C;
     ph.density = e.density;
     ph.gvbo = e.gvbo;
-    if (t.has("law") && t.getString("law") != materials::toString(ph.law))
+    if (t.has("law") && materials::kLawKindNames.parse(t.getString("law")) != ph.law)
       t.fail("law", "catalog entry '" + cname + "' has law '" + materials::toString(ph.law) + "'");
   } else {
     ph.source = "inline";

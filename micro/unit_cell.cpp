@@ -74,6 +74,96 @@ void checkFits(const CellSpec& spec, const InclusionGroup& g, const Inclusion& i
   }
 }
 
+/// @return how many copies of @p proto group @p g places: its lattice, its
+/// count, or (random, by volume fraction) as many of the prototype's size as
+/// reach the fraction of a cell of volume @p V
+int copiesOf(const CellSpec& spec, const InclusionGroup& g, const Inclusion& proto, double V) {
+  if (g.placement == Placement::Lattice)
+    return g.lattice[0] * g.lattice[1] * g.lattice[2];
+  if (g.placement != Placement::Random)
+    return 1;
+  if (g.count > 0)
+    return g.count;
+  // checked as a double before the cast (a tiny radius asks for billions)
+  const double wanted = std::round(*g.volume_fraction * V / proto.volume(spec.size));
+  if (!(wanted <= static_cast<double>(kMaxInclusions)))
+    groupError(spec, g,
+               "volume_fraction with this inclusion size needs " + std::to_string(wanted) +
+                   " inclusions; at most " + std::to_string(kMaxInclusions) +
+                   " per cell: give count or larger inclusions");
+  return std::max(1, static_cast<int>(wanted));
+}
+
+/// @return whether @p c keeps @p gap from every inclusion of @p placed
+bool clearOf(const Inclusion& c, const std::vector<Inclusion>& placed, double gap,
+             const Eigen::Vector3d& size) {
+  for (const Inclusion& o : placed)
+    if (overlaps(c, o, gap, size))
+      return false;
+  return true;
+}
+
+/// Places the copies of @p proto on group @p g's lattice (cell-centred),
+/// each clear of @p placed and of one another, after @p placed.
+void placeLattice(const CellSpec& spec, const InclusionGroup& g, const Inclusion& proto,
+                  std::vector<Inclusion>& placed) {
+  std::vector<Inclusion> mine;
+  for (int i = 0; i < g.lattice[0]; ++i)
+    for (int j = 0; j < g.lattice[1]; ++j)
+      for (int k = 0; k < g.lattice[2]; ++k) {
+        Inclusion c = proto;
+        c.center = Eigen::Vector3d((i + 0.5) / g.lattice[0], (j + 0.5) / g.lattice[1],
+                                   (k + 0.5) / g.lattice[2])
+                       .cwiseProduct(spec.size);
+        if (!clearOf(c, placed, g.min_gap, spec.size))
+          groupError(spec, g, "lattice inclusions overlap (with min_gap): lower the fraction");
+        mine.push_back(c);
+      }
+  for (const auto& c : mine) {
+    for (const auto& o : mine)
+      if (&o != &c && overlaps(c, o, g.min_gap, spec.size))
+        groupError(spec, g, "lattice inclusions overlap (with min_gap): lower the fraction");
+  }
+  placed.insert(placed.end(), mine.begin(), mine.end());
+}
+
+/// Places @p copies copies of @p proto by random sequential adsorption
+/// with periodic wrap, reproducible from group @p g's seed, after @p placed;
+/// @p tests counts the overlap tests of the whole cell (bounded).
+void placeRandom(const CellSpec& spec, const InclusionGroup& g, const Inclusion& proto, int copies,
+                 std::vector<Inclusion>& placed, std::int64_t& tests) {
+  std::mt19937_64 rng(g.seed);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  for (int c = 0; c < copies; ++c) {
+    bool ok = false;
+    for (int a = 0; a < g.max_attempts && !ok; ++a) {
+      tests += std::max<std::int64_t>(1, static_cast<std::int64_t>(placed.size()));
+      if (tests > spec.max_overlap_tests)
+        groupError(spec, g,
+                   "random placement stopped at inclusion " + std::to_string(c + 1) + " of " +
+                       std::to_string(copies) + ", attempt " + std::to_string(a + 1) +
+                       ": the cell's placement reached its bound of " +
+                       std::to_string(spec.max_overlap_tests) +
+                       " overlap tests (attempts x inclusions placed); lower count, "
+                       "volume_fraction, min_gap or max_attempts, or use fewer, larger "
+                       "inclusions");
+      Inclusion cand = proto;
+      for (int i = 0; i < 3; ++i)
+        cand.center[i] = u01(rng) * spec.size[i];
+      if (clearOf(cand, placed, g.min_gap, spec.size)) {
+        placed.push_back(cand);
+        ok = true;
+      }
+    }
+    if (!ok)
+      groupError(spec, g,
+                 "random placement failed for inclusion " + std::to_string(c + 1) + " of " +
+                     std::to_string(copies) + " after " + std::to_string(g.max_attempts) +
+                     " attempts: lower volume_fraction or min_gap, or use fewer, larger "
+                     "inclusions");
+  }
+}
+
 } // namespace
 
 std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>& target,
@@ -86,22 +176,7 @@ std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>
   std::int64_t tests = 0; // overlap tests of the random placement, bounded
   for (const InclusionGroup& g : spec.groups) {
     Inclusion proto = g.prototype;
-    int copies = 1;
-    if (g.placement == Placement::Lattice)
-      copies = g.lattice[0] * g.lattice[1] * g.lattice[2];
-    else if (g.placement == Placement::Random && g.count > 0)
-      copies = g.count;
-    else if (g.placement == Placement::Random) {
-      // copies of the prototype's size that reach the fraction; checked as a
-      // double before the cast (a tiny radius asks for billions)
-      const double wanted = std::round(*g.volume_fraction * V / proto.volume(spec.size));
-      if (!(wanted <= static_cast<double>(kMaxInclusions)))
-        groupError(spec, g,
-                   "volume_fraction with this inclusion size needs " + std::to_string(wanted) +
-                       " inclusions; at most " + std::to_string(kMaxInclusions) +
-                       " per cell: give count or larger inclusions");
-      copies = std::max(1, static_cast<int>(wanted));
-    }
+    const int copies = copiesOf(spec, g, proto, V);
     total += copies;
     if (total > kMaxInclusions)
       groupError(spec, g,
@@ -117,67 +192,14 @@ std::vector<Inclusion> placeInclusions(const CellSpec& spec, std::vector<double>
                                        : std::numeric_limits<double>::quiet_NaN());
     analytic.push_back(copies * proto.volume(spec.size) / V);
     checkFits(spec, g, proto);
-    auto accept = [&](const Inclusion& c) {
-      for (const Inclusion& o : placed)
-        if (overlaps(c, o, g.min_gap, spec.size))
-          return false;
-      return true;
-    };
     if (g.placement == Placement::Single) {
-      if (!accept(proto))
+      if (!clearOf(proto, placed, g.min_gap, spec.size))
         groupError(spec, g, "inclusion overlaps an earlier one");
       placed.push_back(proto);
     } else if (g.placement == Placement::Lattice) {
-      std::vector<Inclusion> mine;
-      for (int i = 0; i < g.lattice[0]; ++i)
-        for (int j = 0; j < g.lattice[1]; ++j)
-          for (int k = 0; k < g.lattice[2]; ++k) {
-            Inclusion c = proto;
-            c.center = Eigen::Vector3d((i + 0.5) / g.lattice[0], (j + 0.5) / g.lattice[1],
-                                       (k + 0.5) / g.lattice[2])
-                           .cwiseProduct(spec.size);
-            if (!accept(c))
-              groupError(spec, g, "lattice inclusions overlap (with min_gap): lower the fraction");
-            mine.push_back(c);
-          }
-      for (const auto& c : mine) {
-        for (const auto& o : mine)
-          if (&o != &c && overlaps(c, o, g.min_gap, spec.size))
-            groupError(spec, g, "lattice inclusions overlap (with min_gap): lower the fraction");
-      }
-      placed.insert(placed.end(), mine.begin(), mine.end());
+      placeLattice(spec, g, proto, placed);
     } else {
-      // random sequential adsorption with periodic wrap, reproducible from the seed
-      std::mt19937_64 rng(g.seed);
-      std::uniform_real_distribution<double> u01(0.0, 1.0);
-      for (int c = 0; c < copies; ++c) {
-        bool ok = false;
-        for (int a = 0; a < g.max_attempts && !ok; ++a) {
-          tests += std::max<std::int64_t>(1, static_cast<std::int64_t>(placed.size()));
-          if (tests > spec.max_overlap_tests)
-            groupError(spec, g,
-                       "random placement stopped at inclusion " + std::to_string(c + 1) + " of " +
-                           std::to_string(copies) + ", attempt " + std::to_string(a + 1) +
-                           ": the cell's placement reached its bound of " +
-                           std::to_string(spec.max_overlap_tests) +
-                           " overlap tests (attempts x inclusions placed); lower count, "
-                           "volume_fraction, min_gap or max_attempts, or use fewer, larger "
-                           "inclusions");
-          Inclusion cand = proto;
-          for (int i = 0; i < 3; ++i)
-            cand.center[i] = u01(rng) * spec.size[i];
-          if (accept(cand)) {
-            placed.push_back(cand);
-            ok = true;
-          }
-        }
-        if (!ok)
-          groupError(spec, g,
-                     "random placement failed for inclusion " + std::to_string(c + 1) + " of " +
-                         std::to_string(copies) + " after " + std::to_string(g.max_attempts) +
-                         " attempts: lower volume_fraction or min_gap, or use fewer, larger "
-                         "inclusions");
-      }
+      placeRandom(spec, g, proto, copies, placed, tests);
     }
   }
   return placed;

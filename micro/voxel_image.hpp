@@ -7,6 +7,8 @@
 /// (i n1 + j) n2 + k. Each file format states its own order and the readers
 /// convert (VTK ImageData and TIFF stacks store x fastest).
 
+#include "core/enum_names.hpp"
+
 #include <Eigen/Dense>
 
 #include <array>
@@ -26,17 +28,40 @@ enum class ImageFormat {
   Tiff, ///< .tif / .tiff: multi-page stack, one page per z slice
 };
 
-/// @return the format named by @p path's extension; false if none matches
+/// The cell-file names of ImageFormat (`format`).
+inline constexpr auto kImageFormatNames =
+    core::enumNames<ImageFormat>({{"hdf5", ImageFormat::Hdf5},
+                                  {"vti", ImageFormat::Vti},
+                                  {"raw", ImageFormat::Raw},
+                                  {"tiff", ImageFormat::Tiff}});
+/// The file extensions (lower case) of each ImageFormat, the usual one first.
+inline constexpr auto kImageExtensions =
+    core::enumNames<ImageFormat>({{".h5", ImageFormat::Hdf5},
+                                  {".hdf5", ImageFormat::Hdf5},
+                                  {".he5", ImageFormat::Hdf5},
+                                  {".dream3d", ImageFormat::Hdf5},
+                                  {".vti", ImageFormat::Vti},
+                                  {".raw", ImageFormat::Raw},
+                                  {".bin", ImageFormat::Raw},
+                                  {".tif", ImageFormat::Tiff},
+                                  {".tiff", ImageFormat::Tiff}});
+/// @return the format named by @p path's extension (any case); false if none matches
 bool formatFromExtension(const std::filesystem::path& path, ImageFormat& out);
-/// @return the format for "hdf5", "vti", "raw", "tiff"; false if unknown
-bool parseImageFormat(const std::string& word, ImageFormat& out);
 /// @return the name of @p f ("hdf5", "vti", "raw", "tiff")
 std::string toString(ImageFormat f);
 
 /// Element types of raw files (and the integer types the readers accept).
 enum class ScalarType { Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64 };
-/// @return the type for "int8", "uint8", ..., "uint64"; false if unknown
-bool parseScalarType(const std::string& word, ScalarType& out);
+/// The cell-file names of ScalarType (`type` of a raw image).
+inline constexpr auto kScalarTypeNames =
+    core::enumNames<ScalarType>({{"int8", ScalarType::Int8},
+                                 {"uint8", ScalarType::UInt8},
+                                 {"int16", ScalarType::Int16},
+                                 {"uint16", ScalarType::UInt16},
+                                 {"int32", ScalarType::Int32},
+                                 {"uint32", ScalarType::UInt32},
+                                 {"int64", ScalarType::Int64},
+                                 {"uint64", ScalarType::UInt64}});
 /// @return the name of @p t ("uint8", ...)
 std::string toString(ScalarType t);
 /// @return the size of one element of @p t in bytes
@@ -46,6 +71,9 @@ int bytesOf(ScalarType t);
 /// first: Xyz (lamina's own files, an h5py array indexed a[x, y, z]) or Zyx
 /// (ImageJ, scanners, numpy arrays indexed a[z, y, x]: x fastest).
 enum class AxisOrder { Xyz, Zyx };
+/// The cell-file names of AxisOrder (`axes`): "xyz" x slowest, "zyx" x fastest.
+inline constexpr auto kAxisOrderNames =
+    core::enumNames<AxisOrder>({{"xyz", AxisOrder::Xyz}, {"zyx", AxisOrder::Zyx}});
 
 /// Where an image cell's voxels come from (the `[cell]` keys of an image cell).
 struct ImageSource {

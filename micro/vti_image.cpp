@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <sstream>
 
 namespace lamina::micro::detail {
@@ -316,41 +317,37 @@ std::vector<unsigned char> unpack(const unsigned char* bytes, std::size_t avail,
   return out;
 }
 
-bool scalarTypeOf(const std::string& vtk, ScalarType& t) {
-  static const std::pair<const char*, ScalarType> map[] = {
-      {"Int8", ScalarType::Int8},   {"UInt8", ScalarType::UInt8},
-      {"Int16", ScalarType::Int16}, {"UInt16", ScalarType::UInt16},
-      {"Int32", ScalarType::Int32}, {"UInt32", ScalarType::UInt32},
-      {"Int64", ScalarType::Int64}, {"UInt64", ScalarType::UInt64},
-      {"Char", ScalarType::Int8},   {"UChar", ScalarType::UInt8}};
-  for (const auto& [name, type] : map)
-    if (vtk == name) {
-      t = type;
-      return true;
-    }
-  return false;
-}
+/// The integer types of a DataArray's `type` (VTK's names; Char and UChar are
+/// older names of Int8 and UInt8).
+constexpr auto kVtkTypeNames = core::enumNames<ScalarType>({{"Int8", ScalarType::Int8},
+                                                            {"UInt8", ScalarType::UInt8},
+                                                            {"Int16", ScalarType::Int16},
+                                                            {"UInt16", ScalarType::UInt16},
+                                                            {"Int32", ScalarType::Int32},
+                                                            {"UInt32", ScalarType::UInt32},
+                                                            {"Int64", ScalarType::Int64},
+                                                            {"UInt64", ScalarType::UInt64},
+                                                            {"Char", ScalarType::Int8},
+                                                            {"UChar", ScalarType::UInt8}});
 
 /// @return the bytes of one element of @p a (an integer or float type)
 std::size_t elementBytes(const VtiArray& a, const ImageSource& src) {
-  ScalarType t;
   if (a.type == "Float32" || a.type == "Float64")
     return a.type == "Float32" ? 4 : 8;
-  if (!scalarTypeOf(a.type, t))
+  const std::optional<ScalarType> t = kVtkTypeNames.parse(a.type);
+  if (!t)
     imageError(src,
                "array '" + a.name + "' has type '" + a.type + "'; labels need an integer type");
-  return static_cast<std::size_t>(bytesOf(t));
+  return static_cast<std::size_t>(bytesOf(*t));
 }
 
 /// Decodes binary elements of VTK type @p vtk (integer or integral float).
 void decodeVtk(const std::vector<unsigned char>& bytes, std::size_t count, const VtiArray& a,
                const VtiDoc& d, std::int32_t* out, const ImageSource& src) {
   const bool big = d.byte_order == "BigEndian";
-  ScalarType t = ScalarType::UInt8;
   const std::size_t es = elementBytes(a, src);
   const bool is_float = a.type == "Float32" || a.type == "Float64";
-  if (!is_float)
-    scalarTypeOf(a.type, t);
+  const ScalarType t = is_float ? ScalarType::UInt8 : *kVtkTypeNames.parse(a.type);
   if (bytes.size() < count * es)
     imageError(src, "truncated .vti file: array '" + a.name + "' holds " +
                         std::to_string(bytes.size() / es) + " values, the extent needs " +

@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   const std::string library = argv[1], cell_path = argv[3];
   const int n = argc > 4 ? std::atoi(argv[4]) : 32;
   const int threads = argc > 5 ? std::atoi(argv[5]) : 1;
-  const auto path = materials::parseDrivePath(argc > 6 ? argv[6] : "confined");
+  const auto path = materials::kDrivePathNames.parse(argc > 6 ? argv[6] : "confined");
   const double rate = argc > 7 ? std::atof(argv[7]) : 2.6e3;
   const double to = argc > 8 ? std::atof(argv[8]) : 0.3;
   const int steps = argc > 9 ? std::atoi(argv[9]) : 60;

@@ -11,9 +11,7 @@ namespace {
 
 /// Top-level `model`: "linear" (default) or "large_deflection".
 ModelKind readModelKind(const core::TableReader& root) {
-  return root.getChoice(
-      "model", {{"linear", ModelKind::Linear}, {"large_deflection", ModelKind::LargeDeflection}},
-      ModelKind::Linear);
+  return root.getChoice("model", kModelKindNames, ModelKind::Linear);
 }
 
 } // namespace

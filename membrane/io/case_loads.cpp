@@ -47,18 +47,9 @@ void addTraction(const Mesh& m, const std::vector<int>& elems, const Eigen::Vect
 enum class LoadType { Force, Pressure, Distributed };
 
 /// The names of `type` in a [[load]] (the one name table of LoadType).
-constexpr std::array<std::pair<std::string_view, LoadType>, 3> kLoadTypes = {
-    {{"force", LoadType::Force},
-     {"pressure", LoadType::Pressure},
-     {"distributed", LoadType::Distributed}}};
-
-/// @return the name of @p type in kLoadTypes
-std::string_view nameOf(LoadType type) {
-  for (const auto& [name, t] : kLoadTypes)
-    if (t == type)
-      return name;
-  return "load";
-}
+constexpr auto kLoadTypes = core::enumNames<LoadType>({{"force", LoadType::Force},
+                                                       {"pressure", LoadType::Pressure},
+                                                       {"distributed", LoadType::Distributed}});
 
 /// Where a force acts (`target`): spread over the selected elements'
 /// area, or split equally over the selected nodes.
@@ -73,7 +64,8 @@ void readLoadTables(const core::TableReader& root, Model& model) {
   for (const auto& r : root.tableArray("load")) {
     Load load;
     const LoadType type = r.getChoice("type", kLoadTypes);
-    load.name = r.getString("name", std::string(nameOf(type)) + std::to_string(model.loads.size()));
+    load.name = r.getString("name", std::string(kLoadTypes.name(type)) +
+                                        std::to_string(model.loads.size()));
     load.pattern = Eigen::VectorXd::Zero(ndof);
     switch (type) {
     case LoadType::Force: {
@@ -224,7 +216,7 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
     if (pos.size() != 3)
       r.fail("position", "expected [x, y, z] (m)");
     c.position = Eigen::Vector3d(pos[0], pos[1], pos[2]);
-    c.burst = r.getChoice("burst", burstChoices(), Burst::Hemispherical);
+    c.burst = r.getChoice("burst", kBurstNames, Burst::Hemispherical);
     c.policy =
         r.getChoice("out_of_range", {{"refuse", OutOfRange::Refuse}, {"clamp", OutOfRange::Clamp}},
                     OutOfRange::Refuse);

@@ -18,9 +18,16 @@
 
 namespace lamina::membrane::case_io {
 
+namespace {
+/// What a [mesh] is (its `type`).
+enum class MeshType { Rectangle, Gmsh };
+constexpr auto kMeshTypes =
+    core::enumNames<MeshType>({{"rectangle", MeshType::Rectangle}, {"gmsh", MeshType::Gmsh}});
+} // namespace
+
 Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path) {
-  const std::string type = r.getString("type", "rectangle");
-  if (type == "rectangle") {
+  const MeshType type = r.getChoice("type", kMeshTypes, MeshType::Rectangle);
+  if (type == MeshType::Rectangle) {
     const double Lx = r.getDouble("Lx");
     const double Ly = r.getDouble("Ly", Lx);
     const auto nx = r.getIntIn("nx", 1, 100000);
@@ -34,15 +41,12 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
                      {r.file(), 0, r.path("nx")});
     return structuredRectangle(Lx, Ly, static_cast<int>(nx), static_cast<int>(ny));
   }
-  if (type == "gmsh") {
-    std::filesystem::path file = r.getString("file");
-    if (file.is_relative())
-      file = case_path.parent_path() / file;
-    if (!std::filesystem::exists(file))
-      r.fail("file", "mesh file not found: " + file.string());
-    return readGmsh(file);
-  }
-  r.fail("type", "unknown mesh type '" + type + "' (rectangle, gmsh)");
+  std::filesystem::path file = r.getString("file"); // MeshType::Gmsh
+  if (file.is_relative())
+    file = case_path.parent_path() / file;
+  if (!std::filesystem::exists(file))
+    r.fail("file", "mesh file not found: " + file.string());
+  return readGmsh(file);
 }
 
 } // namespace lamina::membrane::case_io

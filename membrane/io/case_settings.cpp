@@ -41,7 +41,7 @@ void refuseOtherSchemeKeys(const core::TableReader& root, const core::TableReade
   const bool expl = scheme == IntegratorKind::Explicit;
   const std::string why = std::string(" applies to the ") + (expl ? "Newmark" : "explicit") +
                           " scheme only; this case's time.integrator is \"" +
-                          (expl ? "explicit" : "newmark") + "\"";
+                          std::string(kIntegratorKindNames.name(scheme)) + "\"";
   const IntegratorKind other = expl ? IntegratorKind::Newmark : IntegratorKind::Explicit;
   for (const char* key : schemeOnlyKeys(other))
     if (t.has(key))
@@ -67,11 +67,9 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
   {
     const auto t = root.table("time");
     auto& ts = model.time;
-    ts.integrator =
-        t.getChoice("integrator",
-                    {{"newmark", IntegratorKind::Newmark}, {"explicit", IntegratorKind::Explicit}},
-                    model.kind == ModelKind::LargeDeflection ? IntegratorKind::Explicit
-                                                             : IntegratorKind::Newmark);
+    ts.integrator = t.getChoice("integrator", kIntegratorKindNames,
+                                model.kind == ModelKind::LargeDeflection ? IntegratorKind::Explicit
+                                                                         : IntegratorKind::Newmark);
     if (ts.integrator == IntegratorKind::Newmark && model.kind == ModelKind::LargeDeflection)
       t.fail("integrator", "the large-deflection model needs integrator = \"explicit\"");
     // Row sums of M_D vanish (B of a translation is 0): lumping would drop it.
@@ -125,9 +123,7 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
   }
   if (auto s = root.optionalTable("solver")) {
     auto& ts = model.time;
-    ts.solver = s->getChoice(
-        "type", {{"cg", LinearSolverKind::Cg}, {"cholesky", LinearSolverKind::Cholesky}},
-        LinearSolverKind::Cg);
+    ts.solver = s->getChoice("type", kLinearSolverKindNames, LinearSolverKind::Cg);
     ts.tolerance = s->getDouble("tolerance", ts.tolerance);
     if (!(ts.tolerance > 0 && ts.tolerance < 1))
       s->fail("tolerance", "must be in (0, 1)");

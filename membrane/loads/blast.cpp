@@ -154,28 +154,12 @@ bool positiveFinite(double x) {
 
 } // namespace
 
-const std::array<std::pair<std::string_view, Burst>, 2>& burstChoices() {
-  static const std::array<std::pair<std::string_view, Burst>, 2> choices{
-      {{"hemispherical", Burst::Hemispherical}, {"spherical", Burst::Spherical}}};
-  return choices;
-}
-
 Burst parseBurst(const std::string& name, const ErrorContext& where) {
-  std::string names;
-  for (const auto& [n, b] : burstChoices()) {
-    if (n == name)
-      return b;
-    names += (names.empty() ? "" : " or ") + std::string(n);
-  }
-  throw Error("unknown burst '" + name + "' (expected " + names + ")", where);
+  return kBurstNames.parseOrThrow(name, "burst", where);
 }
 
 const char* burstName(Burst burst) {
-  for (const auto& [n, b] : burstChoices())
-    if (b == burst)
-      return n.data(); // the table's names are literals: NUL-terminated
-  LAMINA_CHECK(false, "burst kind ", static_cast<int>(burst), " has no name");
-  return "";
+  return kBurstNames.name(burst).data(); // the table's names are literals: NUL-terminated
 }
 
 ScaledRange validRange(Burst burst) {

@@ -17,6 +17,7 @@
 ///   Loading Model for DYNA2D and DYNA3D", ARL-TR-1310, 1997 (the model of
 ///   LS-DYNA's *LOAD_BLAST_ENHANCED).
 
+#include "core/enum_names.hpp"
 #include "core/error.hpp"
 
 #include <Eigen/Core>
@@ -38,12 +39,13 @@ enum class Burst {
 
 /// The burst names of case files (blast.burst) and of the CLI (--burst), the
 /// one table both read: "hemispherical", "spherical".
-const std::array<std::pair<std::string_view, Burst>, 2>& burstChoices();
+inline constexpr auto kBurstNames = core::enumNames<Burst>(
+    {{"hemispherical", Burst::Hemispherical}, {"spherical", Burst::Spherical}});
 
-/// Parses a name of burstChoices(); otherwise an Error naming @p where.
+/// Parses a name of kBurstNames; otherwise an Error naming @p where and the names.
 Burst parseBurst(const std::string& name, const ErrorContext& where = {});
 
-/// @return the name of @p burst in burstChoices()
+/// @return the name of @p burst in kBurstNames
 const char* burstName(Burst burst);
 
 /// Scaled-distance interval Z = R / W^(1/3) (m/kg^(1/3)) in which all six

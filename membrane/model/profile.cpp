@@ -5,15 +5,19 @@
 
 namespace lamina::membrane {
 
+namespace {
+/// The case-file names of TimeProfile::Kind (key `profile`).
+constexpr auto kProfileKinds =
+    core::enumNames<TimeProfile::Kind>({{"constant", TimeProfile::Kind::Constant},
+                                        {"step", TimeProfile::Kind::Step},
+                                        {"ramp", TimeProfile::Kind::Ramp},
+                                        {"pulse", TimeProfile::Kind::Pulse},
+                                        {"table", TimeProfile::Kind::Table}});
+} // namespace
+
 TimeProfile TimeProfile::read(const core::TableReader& r) {
   TimeProfile p;
-  p.kind_ = r.getChoice("profile",
-                        {{"constant", Kind::Constant},
-                         {"step", Kind::Step},
-                         {"ramp", Kind::Ramp},
-                         {"pulse", Kind::Pulse},
-                         {"table", Kind::Table}},
-                        Kind::Constant);
+  p.kind_ = r.getChoice("profile", kProfileKinds, Kind::Constant);
   if (p.kind_ == Kind::Constant)
     return p;
   if (p.kind_ == Kind::Step) {

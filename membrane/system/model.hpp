@@ -12,6 +12,7 @@
 /// both (system/), where the second-order system of the structure and what
 /// acts on it (its forces, reactions and works for the integrators) belongs.
 
+#include "core/enum_names.hpp"
 #include "membrane/loads/drag.hpp"
 #include "membrane/loads/ground_springs.hpp"
 #include "membrane/loads/load.hpp"
@@ -38,12 +39,18 @@ enum class ModelKind {
   Linear,         ///< the membrane paper's small-displacement model (default)
   LargeDeflection ///< total-Lagrangian fabric membrane in 3D
 };
+/// The case-file names of ModelKind (key `model`, and the summary's "model").
+inline constexpr auto kModelKindNames = core::enumNames<ModelKind>(
+    {{"linear", ModelKind::Linear}, {"large_deflection", ModelKind::LargeDeflection}});
 
 /// The time integrator of a case (key `time.integrator`).
 enum class IntegratorKind {
   Newmark, ///< the paper's Newmark / HHT-alpha (linear model only; its default)
   Explicit ///< central differences, lumped mass (the large-deflection model's default)
 };
+/// The case-file names of IntegratorKind (key `time.integrator`).
+inline constexpr auto kIntegratorKindNames = core::enumNames<IntegratorKind>(
+    {{"newmark", IntegratorKind::Newmark}, {"explicit", IntegratorKind::Explicit}});
 
 /// The linear solver of a Newmark step (key `solver.type`).
 enum class LinearSolverKind {
@@ -51,10 +58,9 @@ enum class LinearSolverKind {
   Cholesky ///< sparse Cholesky factorization once, then triangular solves ("cholesky")
 };
 
-/// @return the case-file name of @p kind ("cg" or "cholesky")
-inline const char* linearSolverName(LinearSolverKind kind) {
-  return kind == LinearSolverKind::Cholesky ? "cholesky" : "cg";
-}
+/// The case-file names of LinearSolverKind (key `solver.type`, and the summary's).
+inline constexpr auto kLinearSolverKindNames = core::enumNames<LinearSolverKind>(
+    {{"cg", LinearSolverKind::Cg}, {"cholesky", LinearSolverKind::Cholesky}});
 
 /// DOFs that move together (a rigid translating frame): one acceleration,
 /// total force over total mass. Explicit integrator only.

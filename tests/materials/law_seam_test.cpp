@@ -21,13 +21,15 @@ TEST(LawSeam, OneSpellingPerLaw) {
       {"anisotropic", mat::LawKind::Anisotropic},
       {"gvbo", mat::LawKind::Gvbo}};
   for (const auto& [text, kind] : names) {
-    ASSERT_TRUE(mat::parseLawKind(text).has_value()) << text;
-    EXPECT_EQ(*mat::parseLawKind(text), kind);
+    ASSERT_TRUE(mat::kLawKindNames.parse(text).has_value()) << text;
+    EXPECT_EQ(*mat::kLawKindNames.parse(text), kind);
     EXPECT_EQ(std::string(mat::toString(kind)), text);
     EXPECT_NE(mat::lawKindNames().find(text), std::string::npos);
   }
-  EXPECT_FALSE(mat::parseLawKind("Isotropic").has_value()); // case matters: one spelling
-  EXPECT_FALSE(mat::parseLawKind("iso").has_value());
+  EXPECT_FALSE(mat::kLawKindNames.parse("Isotropic").has_value()); // case matters: one spelling
+  EXPECT_FALSE(mat::kLawKindNames.parse("iso").has_value());
+  EXPECT_EQ(mat::lawKindNames().find("reduced-order"),
+            std::string::npos); // given by an entry's name
 }
 
 TEST(LawSeam, ReadMatrix6NamesTheKey) {

@@ -108,7 +108,7 @@ TEST(LibraryNames, BadNamesAndSidePathsInTheFileNameFileAndLine) {
 
 // Card exports refuse a name that would start a line of its own.
 TEST(LibraryNames, ExportRefusesNewlinesInNames) {
-  for (const auto& [name, format] : mat::exportFormats()) {
+  for (const auto& [name, format] : mat::kExportFormatNames) {
     const std::string msg =
         errorOf([&] { mat::exportCard(iso("x\n*INCLUDE, INPUT=evil.inp", 1000), format); });
     EXPECT_NE(msg.find("material name"), std::string::npos) << name << ": " << msg;
