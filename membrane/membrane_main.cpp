@@ -69,7 +69,7 @@ CLI::App* addBlastCommand(CLI::App& app, Options& o) {
   blast->add_option("--charge", o.charge, "explosive mass W, kg")->required();
   blast->add_option("--distance", o.distance, "distance from the charge centre R, m")->required();
   blast->add_option("--burst", o.burst_name, "hemispherical (surface) or spherical (free air)")
-      ->check(CLI::IsMember({"hemispherical", "spherical"}));
+      ->check(CLI::IsMember(membrane::kBurstNames.names()));
   blast->add_option("--tnt-factor", o.tnt_factor, "TNT-equivalence factor (W_TNT = factor * W)");
   blast->add_flag("--json", o.json, "print the parameters as JSON (SI units)");
   return blast;
