@@ -347,7 +347,7 @@ void decodeVtk(const std::vector<unsigned char>& bytes, std::size_t count, const
   const bool big = d.byte_order == "BigEndian";
   const std::size_t es = elementBytes(a, src);
   const bool is_float = a.type == "Float32" || a.type == "Float64";
-  const ScalarType t = is_float ? ScalarType::UInt8 : *kVtkTypeNames.parse(a.type);
+  const ScalarType t = is_float ? ScalarType::UInt8 : kVtkTypeNames.parse(a.type).value();
   if (bytes.size() < count * es)
     imageError(src, "truncated .vti file: array '" + a.name + "' holds " +
                         std::to_string(bytes.size() / es) + " values, the extent needs " +

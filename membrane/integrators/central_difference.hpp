@@ -43,7 +43,9 @@ public:
   const StateForces& forces() const override { return cur_; }
   const StateForces& previousForces() const override { return prev_; }
   const Eigen::VectorXd& increment() const override { return du_; }
-  std::string name() const override { return "explicit"; }
+  std::string name() const override {
+    return std::string(kIntegratorKindNames.name(IntegratorKind::Explicit));
+  }
   /// Saves the forces at t_n and the step "step" = [dt, t_k, k] (the
   /// half-step velocity is recomputed from the State).
   void saveHistory(History& h) const override;

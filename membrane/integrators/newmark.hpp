@@ -49,7 +49,9 @@ public:
   const StateForces& forces() const override { return cur_; }
   const StateForces& previousForces() const override { return prev_; }
   const Eigen::VectorXd& increment() const override { return du_; }
-  std::string name() const override { return "newmark"; }
+  std::string name() const override {
+    return std::string(kIntegratorKindNames.name(IntegratorKind::Newmark));
+  }
   SolverStats stats() const override;
   double setupSeconds() const override { return setup_s_; }
   /// Saves a_{n-1} (the CG start), the forces at t_n, the solver's history.

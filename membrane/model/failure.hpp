@@ -5,6 +5,8 @@
 /// strain, maximum principal Cauchy stress) was crossed, and the first
 /// element of all (membrane paper, conclusion: where and when fabric fails).
 
+#include "core/enum_names.hpp"
+
 #include <string>
 #include <vector>
 
@@ -17,11 +19,15 @@ enum class FailureCriterion : int {
   Stress = 2, ///< maximum principal stress
 };
 
+/// The criterion names of the outputs (summary.json, fields).
+inline constexpr auto kFailureCriterionNames = core::enumNames<FailureCriterion>(
+    {{"none", FailureCriterion::None},
+     {"strain", FailureCriterion::Strain},
+     {"stress", FailureCriterion::Stress}});
+
 /// @return "strain", "stress" or "none"
-inline const char* failureName(FailureCriterion c) {
-  return c == FailureCriterion::Strain   ? "strain"
-         : c == FailureCriterion::Stress ? "stress"
-                                         : "none";
+inline std::string failureName(FailureCriterion c) {
+  return std::string(kFailureCriterionNames.name(c));
 }
 
 /// Per-element failure times and the onset.

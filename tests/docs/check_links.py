@@ -11,14 +11,19 @@
    (docs/membrane.md, "Loads") is the start of a heading or of a bold
    paragraph lead (**Memory** ...) of that page, and so is an unquoted
    capitalised word after a comma (docs/homogenize-solver.md, Memory).
-3. No user doc names a tracker issue ("issue 12", "#12").
+3. No user doc names a tracker issue ("issue 12", "#12"), in prose or in
+   inline code (fenced code blocks are left alone).
 
 Usage: check_links.py SOURCE_DIR. Prints one line per broken link and exits
-1 if there is any, else prints a count and exits 0. Standard library only.
+1 if there is any, else prints a count and exits 0.
+check_links.py --self-test plants a broken file link, a bad anchor, a bad
+citation and a tracker issue in a temporary tree and exits 1 unless each
+is reported (and nothing else is). Standard library only.
 """
 import os
 import re
 import sys
+import tempfile
 
 LINK = re.compile(r"!?\[(?:[^\]\\]|\\.)*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")
 HEADING = re.compile(r"^(#{1,6})\s+(.*?)\s*#*\s*$")
@@ -98,8 +103,8 @@ def bench_notes(root):
     return sorted(found)
 
 
-def main():
-    root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else ".")
+def check(root):
+    """Returns (errors, count of links and citations checked) for a tree."""
     pages = {}
     errors = []
     checked = 0
@@ -116,10 +121,11 @@ def main():
     for path in docs + bench_notes(root):
         with open(path, encoding="utf-8") as f:
             lines = f.read().split("\n")
-        for number, line in strip_code(lines):
+        for number, raw in strip_code(lines, keep_inline=True):
             if path in docs:
-                for m in ISSUE.finditer(line):
+                for m in ISSUE.finditer(raw):
                     errors.append(f"{rel(path)}:{number}: names a tracker issue: '{m.group(0)}'")
+            line = re.sub(r"`[^`]*`", "``", raw)  # no links inside inline code
             for m in LINK.finditer(line):
                 target = m.group(1)
                 if re.match(r"^[a-z]+:", target):
@@ -163,6 +169,51 @@ def main():
                 if section and not page(dest).has_section(section):
                     errors.append(f"{where}: no section '{section.strip()}'")
 
+    return errors, checked
+
+
+PLANTED = {
+    "README.md": "# Tree\n\nSee [the guide](docs/guide.md#usage) and [gone](docs/missing.md).\n",
+    "docs/guide.md": "# Guide\n\n## Usage\n\n**Memory** is bounded.\n\n"
+                     "Back to [the readme](../README.md#tree) and [nowhere](#no-such-heading).\n\n"
+                     "Fixed in `issue 12`.\n",
+    "scripts/tool.sh": "# see docs/guide.md, \"Usage\" and docs/guide.md, Memory\n"
+                       "# and docs/guide.md, \"No Such Section\"\n",
+}
+EXPECTED = [
+    "README.md:3: (docs/missing.md): no file docs/missing.md",
+    "docs/guide.md:7: (#no-such-heading): no heading with anchor #no-such-heading",
+    "scripts/tool.sh:2: docs/guide.md: no section 'No Such Section'",
+    "docs/guide.md:9: names a tracker issue: 'issue 12'",
+]
+
+
+def self_test():
+    """Plants one fault of each kind (and correct links beside them) in a
+    temporary tree; fails unless each fault is reported and nothing else."""
+    with tempfile.TemporaryDirectory() as root:
+        for name, text in PLANTED.items():
+            os.makedirs(os.path.join(root, os.path.dirname(name)), exist_ok=True)
+            with open(os.path.join(root, name), "w", encoding="utf-8") as f:
+                f.write(text)
+        errors, _ = check(root)
+    missed = [e for e in EXPECTED if not any(found.startswith(e) for found in errors)]
+    extra = [e for e in errors if not any(e.startswith(x) for x in EXPECTED)]
+    for e in missed:
+        print(f"self-test: the planted fault was not reported: {e}")
+    for e in extra:
+        print(f"self-test: reported, but not planted: {e}")
+    if missed or extra:
+        return 1
+    print(f"self-test: all {len(EXPECTED)} planted faults reported, nothing else")
+    return 0
+
+
+def main():
+    if len(sys.argv) > 1 and sys.argv[1] == "--self-test":
+        return self_test()
+    root = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else ".")
+    errors, checked = check(root)
     for e in errors:
         print(e)
     if errors:
