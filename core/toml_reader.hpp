@@ -103,7 +103,7 @@ public:
     return getChoiceFrom(key, choices, fallback);
   }
   /// getChoice() with a name table kept by the enum's owner (a container of
-  /// (name, value) pairs, e.g. the std::array that a CLI parser shares).
+  /// (name, value) pairs, e.g. a core::EnumNames table that the CLI shares).
   template <class E, class Choices>
   E getChoice(std::string_view key, const Choices& choices, E fallback) const {
     return getChoiceFrom(key, choices, fallback);

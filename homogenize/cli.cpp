@@ -189,8 +189,7 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_flag("--quiet", cli.quiet, "no progress line");
   // nonlinear: the cell under a strain-rate history (docs/homogenize-nonlinear.md)
   app.add_option("--path", names.path,
-                 "nonlinear run: uniaxial-strain | shear | confined | uniaxial-stress | "
-                 "biaxial-stress (with "
+                 "nonlinear run along this strain path (one of the names listed; with "
                  "--out, --rate and --to are required; with --tangent-rates: the path to "
                  "--tangent-strain)")
       ->check(CLI::IsMember(lamina::materials::kDrivePathNames.names()));

@@ -150,8 +150,7 @@ CLI::App* addDriveCommand(CLI::App& app, Args& a) {
   auto* cmd = app.add_subcommand(
       "drive", "drive one material point along a strain path at a constant rate (CSV)");
   cmd->add_option("NAME", a.name, "library entry or catalog material")->required();
-  cmd->add_option("--path", a.path_name,
-                  "uniaxial-stress | biaxial-stress | uniaxial-strain | shear | confined")
+  cmd->add_option("--path", a.path_name, "strain path (one of the names listed)")
       ->check(CLI::IsMember(mat::kDrivePathNames.names()));
   cmd->add_option("--rate", a.drive.rate, "driven strain rate (1/s, 1e-12 to 1e12; required)")
       ->required(); // range checked by checkRate (the same rule as homogenize)
@@ -209,7 +208,7 @@ Commands addCommands(CLI::App& app, Args& a) {
   c.export_card = app.add_subcommand("export", "print a card for another code");
   c.export_card->add_option("NAME", a.name, "entry name")->required();
   c.export_card
-      ->add_option("--format", a.format, "abaqus | calculix | lsdyna | lsdyna-small | json")
+      ->add_option("--format", a.format, "card format (one of the names listed)")
       ->check(CLI::IsMember(mat::kExportFormatNames.names()));
   c.remove = app.add_subcommand("remove", "remove an entry");
   c.remove->add_option("NAME", a.name, "entry name")->required();
