@@ -3,7 +3,8 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/toml_reader.hpp"
-#include "micro/image_cell.hpp"
+#include "micro/image_io.hpp"
+#include "micro/image_source.hpp"
 
 #include <cmath>
 #include <fstream>

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "micro/inside_query.hpp"
+#include "micro/voxel_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -22,7 +22,7 @@
 /// composite voxels).
 
 #include "materials/stiffness.hpp"
-#include "micro/unit_cell.hpp"
+#include "micro/voxel_cell.hpp"
 
 #include <Eigen/Dense>
 

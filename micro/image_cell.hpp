@@ -1,30 +1,17 @@
 #pragma once
 /// @file image_cell.hpp
 /// @brief Unit cells whose voxels come from an image file (`[cell] image =
-/// "PATH"`): the cell-file keys, label-to-phase mapping, and the labelled
-/// image of any cell (what `micro --out` writes).
+/// "PATH"`): label-to-phase mapping, and the labelled image of any cell
+/// (what `micro --out` writes). The cell-file keys that say where the image
+/// is and how to read it are read by image_source.hpp.
 ///
-/// A phase owns the image value given by its `id = K`. Keys (docs/homogenize.md):
-/// image, format, dataset, axes, dimensions, type, byte_order, header_bytes,
-/// crop = { start, count }, downsample, voxel_size.
+/// A phase owns the image value given by its `id = K`.
 
+#include "micro/cell.hpp"
 #include "micro/image_io.hpp"
-#include "micro/unit_cell.hpp"
-
-namespace lamina::core {
-class TableReader;
-}
+#include "micro/voxel_cell.hpp"
 
 namespace lamina::micro {
-
-/// Reads the image keys of the `[cell]` table @p c (which has `image`) of the
-/// cell file @p cell_file; the image path is resolved against its folder.
-/// Throws lamina::Error naming the file and key on a bad value.
-ImageSource readImageSource(const core::TableReader& c, const std::string& cell_file);
-
-/// @return whether @p c holds a key that only image cells take (to reject
-/// it, naming the key, in a generated cell); the key found goes to @p key
-bool hasImageKey(const core::TableReader& c, std::string& key);
 
 /// Builds the unit cell of an image cell: reads the image (crop,
 /// down-sampling), maps each label to the phase with that id, sets the size

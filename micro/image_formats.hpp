@@ -4,10 +4,9 @@
 /// micro). Readers return the whole image in lamina's layout (x slowest);
 /// probes read the dimensions only.
 
-#include "micro/image_io.hpp"
-
 #include "core/error.hpp"
 #include "core/input_file.hpp"
+#include "micro/voxel_image.hpp"
 
 #include <string>
 

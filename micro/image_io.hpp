@@ -15,25 +15,6 @@
 
 namespace lamina::micro {
 
-/// How a .vti file stores its array.
-enum class VtiEncoding {
-  Ascii,    ///< numbers in the XML text
-  Binary,   ///< base64 inside the DataArray element (format="binary")
-  Appended, ///< raw bytes in the AppendedData section (format="appended", encoding="raw")
-};
-/// The names of VtiEncoding (`micro --vti-encoding`).
-inline constexpr auto kVtiEncodingNames =
-    core::enumNames<VtiEncoding>({{"ascii", VtiEncoding::Ascii},
-                                  {"binary", VtiEncoding::Binary},
-                                  {"appended", VtiEncoding::Appended}});
-
-/// Options of writeImage.
-struct ImageWriteOptions {
-  VtiEncoding vti = VtiEncoding::Appended; ///< .vti only
-  bool zlib = false;                       ///< .vti binary/appended: zlib-compressed blocks
-  std::string name = "phases";             ///< HDF5 dataset (/NAME) or VTI array name
-};
-
 /// Reads the image @p src names and applies its crop and down-sampling.
 VoxelImage readImage(const ImageSource& src);
 

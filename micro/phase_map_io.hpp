@@ -3,7 +3,7 @@
 /// @brief Phase maps on disk: HDF5 dataset /phases (int32, N1 x N2 x N3,
 /// C order, x slowest) with an XDMF file that ParaView opens.
 
-#include "micro/unit_cell.hpp"
+#include "micro/voxel_cell.hpp"
 
 #include <filesystem>
 

@@ -1,7 +1,7 @@
 #pragma once
 /// @file voxel_image.hpp
 /// @brief A voxel image of integer labels (a segmented scan or a written
-/// phase map) and where a cell file says to find one.
+/// phase map), where a cell file says to find one and how one is written.
 ///
 /// Layout in memory is lamina's everywhere: C order, x slowest, index
 /// (i n1 + j) n2 + k. Each file format states its own order and the readers
@@ -102,6 +102,25 @@ struct VoxelImage {
     return static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *
            static_cast<std::size_t>(n[2]);
   }
+};
+
+/// How a .vti file stores its array.
+enum class VtiEncoding {
+  Ascii,    ///< numbers in the XML text
+  Binary,   ///< base64 inside the DataArray element (format="binary")
+  Appended, ///< raw bytes in the AppendedData section (format="appended", encoding="raw")
+};
+/// The names of VtiEncoding (`micro --vti-encoding`).
+inline constexpr auto kVtiEncodingNames =
+    core::enumNames<VtiEncoding>({{"ascii", VtiEncoding::Ascii},
+                                  {"binary", VtiEncoding::Binary},
+                                  {"appended", VtiEncoding::Appended}});
+
+/// Options of writeImage.
+struct ImageWriteOptions {
+  VtiEncoding vti = VtiEncoding::Appended; ///< .vti only
+  bool zlib = false;                       ///< .vti binary/appended: zlib-compressed blocks
+  std::string name = "phases";             ///< HDF5 dataset (/NAME) or VTI array name
 };
 
 } // namespace lamina::micro

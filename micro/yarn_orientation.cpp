@@ -1,5 +1,7 @@
 #include "micro/yarn_orientation.hpp"
 
+#include "micro/voxel_grid.hpp"
+
 #include <algorithm>
 #include <cmath>
 

@@ -24,7 +24,7 @@
 /// result is the unrotated one bit for bit).
 
 #include "micro/inclusion.hpp"
-#include "micro/unit_cell.hpp"
+#include "micro/voxel_cell.hpp"
 
 #include <Eigen/Dense>
 
