@@ -5,7 +5,6 @@
 // over.
 #include "restart_helpers.hpp"
 
-#include "membrane/io/case_file.hpp"
 #include "membrane/io/checkpoint.hpp"
 #include "membrane/run.hpp"
 
@@ -160,8 +159,7 @@ TEST(MalformedRestart, NegativeCheckpointIntervalIsRefused) {
 // other run are named, and a --stop-at-step no run takes is refused before
 // anything runs.
 TEST(MalformedRestart, DragComparisonRestartsFromTheCaseFolder) {
-  const Model model = readCase(test::sourcePath("cases/membrane/impulsive-panel.toml"),
-                               {"mesh.nx=4", "time.t_end=3.0e-3"}, test::testSources());
+  const Model model = test::dragComparisonCase();
   const test::Folder dir("restart-compare-bad");
   RunOptions opt;
   opt.out_dir = dir.path / "case";

@@ -8,7 +8,6 @@
 #include "restart_helpers.hpp"
 
 #include "core/interrupt.hpp"
-#include "membrane/io/case_file.hpp"
 #include "membrane/io/checkpoint.hpp"
 #include "membrane/run.hpp"
 
@@ -305,13 +304,6 @@ TEST(Restart, RunInterruptedBySigtermContinuesBitIdentically) {
 
 namespace {
 
-/// The framed panel run with and without drag (compare_without_drag), shrunk
-/// to 30 Newmark steps of a 4 x 4 mesh (fields at steps 0, 20, 30).
-Model dragComparisonCase() {
-  return readCase(test::sourcePath("cases/membrane/impulsive-panel.toml"),
-                  {"mesh.nx=4", "time.t_end=3.0e-3"}, test::testSources());
-}
-
 /// @return DIR/summary.json
 nlohmann::json summaryOf(const fs::path& dir) {
   return nlohmann::json::parse(lamina::test::slurp(dir / "summary.json"));
@@ -356,7 +348,7 @@ fs::path interruptedRestartFolder(const Model& model, const RunOptions& opt) {
 // for bit: every table and field of both runs, both summaries and the
 // case's summary.json with its drag_comparison (timings aside).
 TEST(Restart, DragComparisonContinuesBitIdentically) {
-  const Model model = dragComparisonCase();
+  const Model model = test::dragComparisonCase();
   const test::Folder dir("restart-compare");
   RunOptions full;
   full.out_dir = dir.path / "full";
