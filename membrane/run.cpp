@@ -588,7 +588,7 @@ public:
       first = endedRun(with_.out_dir);
     if (first) { // the run with drag has ended: continue the one without
       without_.restart = true;
-    } else {     // continue (or start) the run with drag; the one without starts afresh
+    } else { // continue (or start) the run with drag; the one without starts afresh
       with_.stop_may_be_past = true; // a step it is past is the second run's stop
       first = runOne(model_, with_);
       if (first->contains("stopped_at_step"))
@@ -610,12 +610,15 @@ private:
   void checkRestartFolder() const {
     if (!std::filesystem::is_directory(top_))
       throw Error("no output folder to restart from", {top_.string(), 0, ""});
-    const auto name = top_.filename().string();
+    auto dir = top_.lexically_normal();
+    if (!dir.has_filename()) // "DIR/"
+      dir = dir.parent_path();
+    const auto name = dir.filename().string();
     if ((name == "with-drag" || name == "without-drag") &&
         !std::filesystem::is_directory(with_.out_dir))
       throw Error("this is the folder of one of the two runs of a compare_without_drag case; "
                   "restart with the case's folder " +
-                      top_.parent_path().string(),
+                      (dir.has_parent_path() ? dir.parent_path() : ".").string(),
                   {top_.string(), 0, "--restart"});
   }
 
@@ -697,8 +700,8 @@ private:
   }
 
   const Model& model_;
-  std::filesystem::path top_;      // the case's folder
-  RunOptions with_, without_;      // the two runs'
+  std::filesystem::path top_; // the case's folder
+  RunOptions with_, without_; // the two runs'
 };
 
 } // namespace

@@ -189,8 +189,8 @@ TEST(MalformedRestart, DragComparisonRestartsFromTheCaseFolder) {
 
   const fs::path case_dir = opt.out_dir;
   opt.out_dir = case_dir / "without-drag";
-  expectNames(error(), opt.out_dir, {"one of the two runs", "restart with the case's folder " +
-                                                                  case_dir.string()});
+  expectNames(error(), opt.out_dir,
+              {"one of the two runs", "restart with the case's folder " + case_dir.string()});
   opt.out_dir = case_dir;
   const fs::path ck = checkpointPath(case_dir / "without-drag");
   fs::copy_file(checkpointPath(case_dir / "with-drag"), ck, fs::copy_options::overwrite_existing);
