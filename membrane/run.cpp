@@ -3,6 +3,7 @@
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/input_file.hpp"
 #include "core/interrupt.hpp"
 #include "core/progress.hpp"
 #include "membrane/io/checkpoint.hpp"
@@ -89,13 +90,15 @@ public:
     core::writeFileAtomically(opt_.out_dir / "summary.json", summary.dump(2) + "\n");
     if (failure)
       throw *failure;
-    if (interrupted)
+    if (interrupted) {
+      const auto& again = opt_.restart_folder.empty() ? opt_.out_dir : opt_.restart_folder;
       throw Interrupted(interrupted,
                         "interrupted by " + core::signalName(interrupted) +
                             " at t = " + core::formatShort(sim.time()) + " s (step " +
                             std::to_string(sim.steps()) + " of " + std::to_string(steps) +
                             "); outputs and checkpoint " + "written to " + opt_.out_dir.string() +
-                            " (continue with --restart " + opt_.out_dir.string() + ")");
+                            " (continue with --restart " + again.string() + ")");
+    }
     return summary;
   }
 
@@ -122,7 +125,8 @@ private:
       resumed = resume(sim);
     reached_end_ = endReached(sim);
     const long stop = opt_.stop_at_step;
-    if (stop > 0 && (stop <= sim.steps() || (!adaptive_ && stop > steps_))) // never stops there
+    const bool past = stop <= sim.steps() && !opt_.stop_may_be_past;
+    if (stop > 0 && (past || (!adaptive_ && stop > steps_))) // never stops there
       throw Error("--stop-at-step " + std::to_string(stop) + " is not one of the steps " +
                       std::to_string(sim.steps() + 1) + " to " + std::to_string(steps_) +
                       " this run takes",
@@ -560,6 +564,146 @@ private:
   double wall_s_ = 0, step_s_ = 0;
 };
 
+/// A compare_without_drag case: the run with drag, then the run without, each
+/// in its own folder with its own checkpoint (runCase() says what a stop and
+/// a restart do).
+class DragComparison {
+public:
+  DragComparison(const Model& model, const RunOptions& options)
+      : model_(model), top_(options.out_dir), with_(options), without_(options) {
+    with_.out_dir = top_ / "with-drag";
+    without_.out_dir = top_ / "without-drag";
+    with_.restart_folder = without_.restart_folder = top_;
+    // Another digest: a checkpoint of one run is refused by the other.
+    without_.case_digest =
+        (options.case_digest.empty() ? model.name : options.case_digest) + "/without-drag";
+  }
+
+  nlohmann::json run() {
+    if (with_.restart)
+      checkRestartFolder();
+    removeTemporaries(top_, {"summary.json"}); // as runModel() does in its folder
+    std::optional<nlohmann::json> first;
+    if (with_.restart)
+      first = endedRun(with_.out_dir);
+    if (first) { // the run with drag has ended: continue the one without
+      without_.restart = true;
+    } else { // continue (or start) the run with drag; the one without starts afresh
+      with_.stop_may_be_past = true; // a step it is past is the second run's stop
+      first = runOne(model_, with_);
+      if (first->contains("stopped_at_step"))
+        return stopped(*first, with_);
+      without_.restart = false;
+    }
+    const nlohmann::json second = runOne(bareModel(), without_);
+    if (second.contains("stopped_at_step"))
+      return stopped(second, without_);
+    nlohmann::json summary = *first;
+    summary["drag_comparison"] = {{"with_drag", peaks(*first)}, {"without_drag", peaks(second)}};
+    core::writeFileAtomically(top_ / "summary.json", summary.dump(2) + "\n");
+    return summary;
+  }
+
+private:
+  /// Refuses a restart from a missing folder, or from the folder of one of
+  /// the two runs (the case's folder holds both).
+  void checkRestartFolder() const {
+    if (!std::filesystem::is_directory(top_))
+      throw Error("no output folder to restart from", {top_.string(), 0, ""});
+    auto dir = top_.lexically_normal();
+    if (!dir.has_filename()) // "DIR/"
+      dir = dir.parent_path();
+    const auto name = dir.filename().string();
+    if ((name == "with-drag" || name == "without-drag") &&
+        !std::filesystem::is_directory(with_.out_dir))
+      throw Error("this is the folder of one of the two runs of a compare_without_drag case; "
+                  "restart with the case's folder " +
+                      (dir.has_parent_path() ? dir.parent_path() : ".").string(),
+                  {top_.string(), 0, "--restart"});
+  }
+
+  /// @return the summary of the run in @p dir when it ended (its
+  /// summary.json records no interrupt, stop or divergence, and no table is
+  /// still a .part file), else none (a run to continue from its checkpoint)
+  static std::optional<nlohmann::json> endedRun(const std::filesystem::path& dir) {
+    for (const char* table : {"probes.csv.part", "energy.csv.part", "reactions.csv.part"})
+      if (std::filesystem::exists(dir / table))
+        return std::nullopt; // killed mid-run: its summary.json is an older run's
+    const std::optional<nlohmann::json> s = readSummary(dir);
+    if (!s || !s->is_object() || s->value("interrupted", false) || s->contains("stopped_at_step") ||
+        s->contains("diverged"))
+      return std::nullopt;
+    return s;
+  }
+
+  /// @return DIR/summary.json of @p dir, none when missing or unreadable
+  static std::optional<nlohmann::json> readSummary(const std::filesystem::path& dir) {
+    const auto path = dir / "summary.json";
+    if (!std::filesystem::exists(path))
+      return std::nullopt;
+    try {
+      auto s = nlohmann::json::parse(core::readWholeFile(path, core::kMaxTableBytes, "summary"),
+                                     nullptr, false);
+      if (!s.is_discarded())
+        return s;
+    } catch (const Error&) {
+    }
+    return std::nullopt;
+  }
+
+  /// runModel(@p model, @p o); a signal or a divergence (summary.json
+  /// written, then rethrown) ends the case as stopped() does.
+  nlohmann::json runOne(const Model& model, const RunOptions& o) const {
+    try {
+      return runModel(model, o);
+    } catch (const Interrupted&) {
+      if (const auto s = readSummary(o.out_dir))
+        stopped(*s, o);
+      throw;
+    } catch (const DivergenceError&) {
+      if (const auto s = readSummary(o.out_dir))
+        stopped(*s, o);
+      throw;
+    }
+  }
+
+  /// Writes and @return the case's summary.json of a case stopped in the
+  /// run of @p o: that run's summary @p s and "stopped_run" (its folder).
+  nlohmann::json stopped(nlohmann::json s, const RunOptions& o) const {
+    s["stopped_run"] = o.out_dir.filename().string();
+    core::writeFileAtomically(top_ / "summary.json", s.dump(2) + "\n");
+    return s;
+  }
+
+  /// @return the case without its drag tables and drag loads
+  Model bareModel() const {
+    Model bare = model_;
+    bare.drags.clear();
+    bare.surface_loads.erase(
+        std::remove_if(bare.surface_loads.begin(), bare.surface_loads.end(),
+                       [](const auto& l) { return l->kind() == WorkKind::Drag; }),
+        bare.surface_loads.end());
+    bare.compare_without_drag = false;
+    return bare;
+  }
+
+  /// @return what drag_comparison compares of one run's summary @p s
+  static nlohmann::json peaks(const nlohmann::json& s) {
+    double reaction = 0;
+    for (const auto& [name, r] : s["reactions"].items())
+      reaction = std::max(reaction, r["peak"].get<double>());
+    return nlohmann::json{{"max_abs_w", s["max_abs_w"]},
+                          {"max_speed", s["max_speed"]},
+                          {"peak_reaction", reaction},
+                          {"peak_total_reaction", s["peak_reaction_total"]},
+                          {"reactions", s["reactions"]}};
+  }
+
+  const Model& model_;
+  std::filesystem::path top_; // the case's folder
+  RunOptions with_, without_; // the two runs'
+};
+
 } // namespace
 
 nlohmann::json runModel(const Model& model, const RunOptions& options) {
@@ -569,36 +713,7 @@ nlohmann::json runModel(const Model& model, const RunOptions& options) {
 nlohmann::json runCase(const Model& model, const RunOptions& options) {
   if (!model.compare_without_drag)
     return runModel(model, options);
-  if (options.restart || options.stop_at_step > 0)
-    throw Error("a case with compare_without_drag = true runs twice and cannot be checkpointed; "
-                "--restart and --stop-at-step need a single run",
-                {"", 0, "compare_without_drag"});
-  auto peaks = [](const nlohmann::json& s) {
-    double reaction = 0;
-    for (const auto& [name, r] : s["reactions"].items())
-      reaction = std::max(reaction, r["peak"].get<double>());
-    return nlohmann::json{{"max_abs_w", s["max_abs_w"]},
-                          {"max_speed", s["max_speed"]},
-                          {"peak_reaction", reaction},
-                          {"peak_total_reaction", s["peak_reaction_total"]},
-                          {"reactions", s["reactions"]}};
-  };
-  removeTemporaries(options.out_dir, {"summary.json"}); // as runModel() does in its folder
-  RunOptions with = options, without = options;
-  with.out_dir = options.out_dir / "with-drag";
-  without.out_dir = options.out_dir / "without-drag";
-  nlohmann::json summary = runModel(model, with);
-  Model bare = model;
-  bare.drags.clear();
-  bare.surface_loads.erase(
-      std::remove_if(bare.surface_loads.begin(), bare.surface_loads.end(),
-                     [](const auto& l) { return l->kind() == WorkKind::Drag; }),
-      bare.surface_loads.end());
-  bare.compare_without_drag = false;
-  const nlohmann::json other = runModel(bare, without);
-  summary["drag_comparison"] = {{"with_drag", peaks(summary)}, {"without_drag", peaks(other)}};
-  core::writeFileAtomically(options.out_dir / "summary.json", summary.dump(2) + "\n");
-  return summary;
+  return DragComparison(model, options).run();
 }
 
 } // namespace lamina::membrane

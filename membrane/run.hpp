@@ -30,6 +30,13 @@ struct RunOptions {
   /// Stop after this step (counted from t = 0) with a checkpoint, as for an
   /// interrupt but exiting normally (0: run to t_end).
   long stop_at_step = 0;
+  /// A stop_at_step this run (a restart) is already past is not refused: the
+  /// run goes on to t_end (the first of a compare_without_drag case's two
+  /// runs, whose second run then stops there).
+  bool stop_may_be_past = false;
+  /// The folder the interrupt's message names for `--restart` (empty:
+  /// out_dir; a compare_without_drag case's runs name the case's folder).
+  std::filesystem::path restart_folder;
   /// Identifies the case in checkpoints (caseDigest() of the case file and
   /// --set options); a restart refuses a checkpoint with another digest.
   /// Empty: the model's name.
@@ -44,6 +51,15 @@ nlohmann::json runModel(const Model& model, const RunOptions& options);
 /// summary plus "drag_comparison" {with_drag, without_drag: {max_abs_w,
 /// peak_reaction (largest per-set peak), peak_total_reaction (peak of the
 /// magnitude of the sum of all reactions, springs included), max_speed}}.
+///
+/// Each of the two runs checkpoints in its own folder. A run that stops
+/// (signal, stop_at_step, divergence) ends the case: DIR/summary.json is
+/// then that run's summary plus "stopped_run" (its folder's name). A
+/// restart (options.restart, out_dir = DIR) continues the run with drag
+/// unless its summary.json records a run that ended, then runs the one
+/// without drag from t = 0; or, the run with drag having ended, continues
+/// the one without drag. stop_at_step stops the first of the two runs that
+/// still takes that step (each counts its own steps from t = 0).
 nlohmann::json runCase(const Model& model, const RunOptions& options);
 
 } // namespace lamina::membrane

@@ -1,7 +1,8 @@
 // Restarts that cannot continue : no checkpoint in the folder, a
 // truncated or corrupted checkpoint, a checkpoint of another case, outputs
-// that are gone, a case that runs twice. Each is a clear error naming the
-// file, never a crash or a run that silently starts over.
+// that are gone, the folder of one run of a case that runs twice. Each is a
+// clear error naming the file, never a crash or a run that silently starts
+// over.
 #include "restart_helpers.hpp"
 
 #include "membrane/io/checkpoint.hpp"
@@ -150,4 +151,50 @@ TEST(MalformedRestart, NegativeCheckpointIntervalIsRefused) {
   } catch (const lamina::Error& e) {
     EXPECT_NE(std::string(e.what()).find("output.checkpoint_every"), std::string::npos) << e.what();
   }
+}
+
+// A compare_without_drag case (two runs, DIR/with-drag and DIR/without-drag,
+// each with its checkpoint) continues from DIR: the folder of one of its
+// runs is refused naming DIR, a missing checkpoint and a checkpoint of the
+// other run are named, and a --stop-at-step no run takes is refused before
+// anything runs.
+TEST(MalformedRestart, DragComparisonRestartsFromTheCaseFolder) {
+  const Model model = test::dragComparisonCase();
+  const test::Folder dir("restart-compare-bad");
+  RunOptions opt;
+  opt.out_dir = dir.path / "case";
+  opt.quiet = true;
+  opt.restart = true;
+  auto error = [&] {
+    try {
+      runCase(model, opt);
+    } catch (const lamina::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  expectNames(error(), opt.out_dir, {"no output folder"});
+  EXPECT_FALSE(fs::exists(opt.out_dir)) << "a failed restart must not create the folder";
+
+  opt.restart = false;
+  opt.stop_at_step = 31; // 30 steps
+  expectNames(error(), "--stop-at-step 31", {"not one of the steps 1 to 30"});
+  EXPECT_FALSE(fs::exists(opt.out_dir / "with-drag" / "probes.csv")) << "it ran";
+  opt.stop_at_step = 10;
+  runCase(model, opt);
+  opt.stop_at_step = 5; // the first run ends, the second stops at 5
+  opt.restart = true;
+  runCase(model, opt);
+  opt.stop_at_step = 0;
+
+  const fs::path case_dir = opt.out_dir;
+  opt.out_dir = case_dir / "without-drag";
+  expectNames(error(), opt.out_dir,
+              {"one of the two runs", "restart with the case's folder " + case_dir.string()});
+  opt.out_dir = case_dir;
+  const fs::path ck = checkpointPath(case_dir / "without-drag");
+  fs::copy_file(checkpointPath(case_dir / "with-drag"), ck, fs::copy_options::overwrite_existing);
+  expectNames(error(), ck, {"another case"});
+  fs::remove(ck);
+  expectNames(error(), ck, {"no checkpoint"});
 }

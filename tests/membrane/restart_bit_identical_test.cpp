@@ -7,6 +7,7 @@
 // other number can stand in for it.
 #include "restart_helpers.hpp"
 
+#include "core/interrupt.hpp"
 #include "membrane/io/checkpoint.hpp"
 #include "membrane/run.hpp"
 
@@ -299,4 +300,112 @@ TEST(Restart, RunInterruptedBySigtermContinuesBitIdentically) {
   r = lamina::test::run(test::membraneCommand(args(split, "--restart")));
   ASSERT_EQ(r.code, 0) << r.output;
   test::expectSameOutputs(full, split, "case3");
+}
+
+namespace {
+
+/// @return DIR/summary.json
+nlohmann::json summaryOf(const fs::path& dir) {
+  return nlohmann::json::parse(lamina::test::slurp(dir / "summary.json"));
+}
+
+/// @return the step of the checkpoint in @p dir
+long checkpointStep(const fs::path& dir) {
+  return static_cast<long>(readCheckpoint(checkpointPath(dir)).data.at("state/time")[1]);
+}
+
+/// Runs @p model with @p opt under an interrupt guard after a SIGINT (the
+/// run stops after its next step); @return the folder the message says to
+/// continue with (`--restart DIR`).
+fs::path interruptedRestartFolder(const Model& model, const RunOptions& opt) {
+  std::string message;
+  {
+    const lamina::core::InterruptGuard guard;
+    std::raise(SIGINT);
+    try {
+      runCase(model, opt);
+      ADD_FAILURE() << "the run was not interrupted";
+    } catch (const lamina::Interrupted& e) {
+      message = e.what();
+    }
+  }
+  { const lamina::core::InterruptGuard clear; } // the next run does not see the signal
+  const std::string key = "(continue with --restart ";
+  const auto at = message.find(key);
+  if (at == std::string::npos || message.back() != ')') {
+    ADD_FAILURE() << message;
+    return {};
+  }
+  return message.substr(at + key.size(), message.size() - 1 - at - key.size());
+}
+
+} // namespace
+
+// A compare_without_drag case runs twice (DIR/with-drag, DIR/without-drag),
+// each run with its own checkpoint: stopped in the first run, then in the
+// second, then interrupted by SIGINT in each, and every time continued with
+// `--restart DIR`, it ends with the outputs of the uninterrupted case bit
+// for bit: every table and field of both runs, both summaries and the
+// case's summary.json with its drag_comparison (timings aside).
+TEST(Restart, DragComparisonContinuesBitIdentically) {
+  const Model model = test::dragComparisonCase();
+  const test::Folder dir("restart-compare");
+  RunOptions full;
+  full.out_dir = dir.path / "full";
+  full.quiet = true;
+  ASSERT_EQ(runCase(model, full)["steps"].get<long>(), 30);
+
+  RunOptions split = full;
+  split.out_dir = dir.path / "split";
+  split.stop_at_step = 10; // a fresh run: the first run stops
+  auto s = runCase(model, split);
+  EXPECT_EQ(s["stopped_run"], "with-drag");
+  EXPECT_EQ(s["stopped_at_step"], 10);
+  EXPECT_EQ(summaryOf(split.out_dir), s);
+  EXPECT_EQ(checkpointStep(split.out_dir / "with-drag"), 10);
+  EXPECT_FALSE(fs::exists(split.out_dir / "without-drag")) << "the second run started";
+
+  split.restart = true;
+  split.stop_at_step = 5; // the first run is past step 5: it ends, the second stops there
+  Model periodic = model; // periodic checkpoints, each run in its own folder
+  periodic.output.checkpoint_every = 4;
+  s = runCase(periodic, split);
+  EXPECT_EQ(s["stopped_run"], "without-drag");
+  EXPECT_EQ(s["stopped_at_step"], 5);
+  EXPECT_EQ(checkpointStep(split.out_dir / "with-drag"), 28);
+  EXPECT_EQ(checkpointStep(split.out_dir / "without-drag"), 5);
+  EXPECT_FALSE(summaryOf(split.out_dir / "with-drag").contains("stopped_at_step"));
+
+  split.stop_at_step = 12; // the first run has ended: the second continues to 12
+  s = runCase(model, split);
+  EXPECT_EQ(s["stopped_run"], "without-drag");
+  EXPECT_EQ(checkpointStep(split.out_dir / "with-drag"), 28) << "the ended run ran again";
+
+  split.stop_at_step = 0; // SIGINT in the second run: continue with the folder it names
+  EXPECT_EQ(interruptedRestartFolder(model, split), split.out_dir);
+  s = summaryOf(split.out_dir);
+  EXPECT_EQ(s["stopped_run"], "without-drag");
+  EXPECT_EQ(s["signal"], "SIGINT");
+  EXPECT_EQ(checkpointStep(split.out_dir / "without-drag"), 13);
+
+  runCase(model, split);
+  for (const char* run : {"with-drag", "without-drag"})
+    test::expectSameOutputs(full.out_dir / run, split.out_dir / run, model.name);
+  const auto a = summaryOf(full.out_dir), b = summaryOf(split.out_dir);
+  ASSERT_TRUE(b.contains("drag_comparison"));
+  EXPECT_FALSE(b.contains("stopped_run"));
+  test::expectSameJson(a, b, "summary.json");
+
+  // SIGINT in the first run of a fresh case, continued with the folder it names.
+  RunOptions fresh = full;
+  fresh.out_dir = dir.path / "fresh";
+  const fs::path again = interruptedRestartFolder(model, fresh);
+  EXPECT_EQ(again, fresh.out_dir);
+  EXPECT_EQ(summaryOf(fresh.out_dir)["stopped_run"], "with-drag");
+  fresh.out_dir = again;
+  fresh.restart = true;
+  runCase(model, fresh);
+  for (const char* run : {"with-drag", "without-drag"})
+    test::expectSameOutputs(full.out_dir / run, fresh.out_dir / run, model.name);
+  test::expectSameJson(a, summaryOf(fresh.out_dir), "summary.json");
 }

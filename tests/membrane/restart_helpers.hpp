@@ -6,6 +6,7 @@
 #include "helpers.hpp"
 
 #include "core/hdf5_file.hpp"
+#include "membrane/io/case_file.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -28,6 +29,14 @@ inline std::string strikeCase(const std::string& extra = "") {
          "[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n"
          "[[probe]]\nname = \"c\"\nat = [0.5, 0.5]\n" +
          extra;
+}
+
+/// The restart tests' case that runs twice (compare_without_drag): the
+/// framed panel with and without drag, shrunk to 30 Newmark steps of a
+/// 4 x 4 mesh (fields at steps 0, 20, 30).
+inline Model dragComparisonCase() {
+  return readCase(sourcePath("cases/membrane/impulsive-panel.toml"),
+                  {"mesh.nx=4", "time.t_end=3.0e-3"}, testSources());
 }
 
 /// A fresh folder in the temp folder, removed at the end of the test.
