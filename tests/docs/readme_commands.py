@@ -40,9 +40,11 @@ also checks the figures marked full: the reduced-order cell's accuracy
 as much as all the rest). Every other figure's commands are cheap enough to
 run always.
 
-Cost: about 35 s of CPU on 2 cores (the blast-roof pair, 13 s, is the
-largest; the sheet impacts, blasts, convergence studies and cells a few
-seconds each), under a minute of wall time on a quiet 2-core machine.
+Cost: about 40 s of CPU (user + system; the blast-roof pair, 13 s, is the
+largest, the sheet impacts, blasts, convergence studies and cells a few
+seconds each), measured on the 2-core machine under load 13-16, where it
+took 2 min 15 s of wall time alone (5 min beside a second such job). The
+figures marked full add about 70 s of CPU.
 
 Usage: readme_commands.py SOURCE_DIR BUILD_DIR [--keep]   (--keep: leave the
        temporary tree and print its path)
