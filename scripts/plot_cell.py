@@ -7,9 +7,11 @@ Usage: /usr/bin/python3 scripts/plot_cell.py PHASES.h5 [OUT.png] [TITLE]
 
 OUT.png defaults to PHASES.png beside PHASES.h5. Prints "wrote OUT.png".
 Reads /phases (N1 x N2 x N3, x slowest) and its attributes size_x, size_y,
-size_z (m) and phase_names. (docs/images/homogenize-polyurea-cell.png:
-micro cases/cells/polyurea.toml --out /tmp/pu64.h5 --resolution 64, then
-this script with OUT docs/images/homogenize-polyurea-cell.png.)"""
+size_z (m) and phase_names. docs/images/homogenize-polyurea-cell.png:
+  micro cases/cells/polyurea.toml --out /tmp/pu64.h5 --resolution 64
+  plot_cell.py /tmp/pu64.h5 docs/images/homogenize-polyurea-cell.png \
+      "cases/cells/polyurea.toml at 64^3: hard ellipsoids (19 %) at 45 degrees from z"
+"""
 import argparse
 import os
 

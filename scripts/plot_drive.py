@@ -34,13 +34,24 @@ def columns(path):
     return rows
 
 
-def pair(rows, path):
+# the paths of `materials drive` in words (titles; also plot_rom.py)
+PATH_WORDS = {"shear": "simple shear", "confined": "confined compression",
+              "uniaxial-stress": "uniaxial stress", "uniaxial-strain": "uniaxial strain",
+              "biaxial-stress": "equibiaxial plane stress"}
+
+
+def driven(path):
+    """(strain column, stress column, sign) of the driven pair; compression positive
+    (also plot_rom.py)."""
     if path == "shear":
-        e, s, sign = "eps_xy", "sig_xy", 1.0
-    elif path == "confined":
-        e, s, sign = "eps_xx", "sig_xx", -1.0
-    else:
-        e, s, sign = "eps_xx", "sig_xx", 1.0
+        return "eps_xy", "sig_xy", 1.0
+    if path == "confined":
+        return "eps_xx", "sig_xx", -1.0
+    return "eps_xx", "sig_xx", 1.0
+
+
+def pair(rows, path):
+    e, s, sign = driven(path)
     return ([sign * float(r[e]) for r in rows], [sign * float(r[s]) / 1e6 for r in rows])
 
 
@@ -96,9 +107,7 @@ def main():
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8, title="strain rate" if a.name and not a.csv else None,
               title_fontsize=8)
-    words = {"shear": "simple shear", "confined": "confined compression",
-             "uniaxial-stress": "uniaxial stress", "uniaxial-strain": "uniaxial strain",
-             "biaxial-stress": "equibiaxial plane stress"}[a.path]
+    words = PATH_WORDS[a.path]
     if a.unload:
         words += ", load and unload"
     ax.set_title(a.title or (", ".join(filter(None, [a.name, words]))), fontsize=10)

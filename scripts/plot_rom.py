@@ -17,7 +17,7 @@ Usage:
       --partitions 1,8 --rates 1e2,2.6e3,1e5 --to 0.3 --steps 60 \
       --work rom-study --out rom-vs-full-field.png [--resolution N] [--bin build/bin]
 Prints the table (markdown) and writes the plot to --out and the table to
-WORK/table.md."""
+WORK/table.md, printing "wrote PATH" for each."""
 import argparse
 import csv
 import os
@@ -29,16 +29,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from plot_drive import PATH_WORDS, driven  # noqa: E402
+
 PATHS = ["uniaxial-stress", "shear", "confined"]
-
-
-def driven(path):
-    """(strain column, stress column, sign) of the driven pair; compression positive."""
-    if path == "shear":
-        return "eps_xy", "sig_xy", 1.0
-    if path == "confined":
-        return "eps_xx", "sig_xx", -1.0
-    return "eps_xx", "sig_xx", 1.0
 
 
 def curve(csv_path, path):
@@ -126,8 +119,6 @@ def main():
         axes = [axes]
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     styles = ["--", ":", "-."]
-    words = {"uniaxial-stress": "uniaxial stress", "shear": "simple shear",
-             "confined": "confined compression"}
     for ax, path in zip(axes, paths):
         for c, rate in enumerate(rates):
             e, s = curves[(path, rate, "ff")]
@@ -135,7 +126,7 @@ def main():
             for j, k in enumerate(parts):
                 e, s = curves[(path, rate, k)]
                 ax.plot(e, [v / 1e6 for v in s], styles[j % 3], color=colours[c])
-        ax.set_title(words.get(path, path), fontsize=10)
+        ax.set_title(PATH_WORDS[path], fontsize=10)
         e, s, _ = driven(path)
         sign = "-" if path == "confined" else ""
         ax.set_xlabel("strain %s%s" % (sign, e.replace("eps_xy", "gamma_xy")))

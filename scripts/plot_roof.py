@@ -18,6 +18,7 @@ attribute), probes.csv (the probe `centre`) and reactions.csv (columns
 "wrote PATH" for each picture.
 """
 import argparse
+import json
 import csv
 import glob
 import os
@@ -74,6 +75,13 @@ def shape_at_peak(run_dir):
     return xyz, xyz + u, times[k]
 
 
+def peak_w(run_dir):
+    """summary.json max_abs_w: the peak |w| over every step and node (the
+    drawn state is the stored field step nearest to the centre's peak)."""
+    with open(os.path.join(run_dir, "summary.json")) as fh:
+        return float(json.load(fh)["max_abs_w"])
+
+
 def plot_side(out_dir, ax):
     """Cross-sections (y-z) of both runs, each through the node of its peak
     vertical displacement (nodes within 0.3 m of its x) at the stored step
@@ -82,13 +90,14 @@ def plot_side(out_dir, ax):
         x0, x1, tk = shape_at_peak(os.path.join(out_dir, sub))
         w = x1[:, 2] - x0[:, 2]
         k = int(np.argmax(np.abs(w)))
+        peak = peak_w(os.path.join(out_dir, sub))
         sel = np.abs(x0[:, 0] - x0[k, 0]) < 0.3
         order = np.argsort(x0[sel, 1])
         if sub == RUNS[0][0]:
             ax.plot(x0[sel, 1][order], x0[sel, 2][order], "--", color="0.5", label="undeformed")
         ax.plot(x1[sel, 1][order], x1[sel, 2][order], "-o", color=colour, ms=2.5,
-                label=f"{label}, t = {tk * 1e3:.0f} ms: largest |w| {abs(w[k]):.2f} m "
-                      f"(section x = {x0[k, 0]:.1f} m)")
+                label=f"{label}: peak |w| {peak:.2f} m; drawn at t = {tk * 1e3:.0f} ms, "
+                      f"section x = {x0[k, 0]:.1f} m")
     ax.set_aspect("equal")
     ax.set_xlabel("y (m), across the span")
     ax.set_ylabel("z (m)")
