@@ -51,7 +51,7 @@ run() { # run NAME CASE MATERIAL [extra --set ...]
     cat "$dir/run.log" >&2
     exit 1
   fi
-  "$PY" scripts/plot_run.py "$dir" --title "$name: $material" > /dev/null
+  "$PY" scripts/plot_run.py "$dir" --title "$name ($material)"
   "$PY" scripts/summarize_run.py "$dir" "$OUT/materials/$material.json" --title "$name"
 }
 run polyurea-circle cases/demo/circle-impact.toml polyurea-45

@@ -3,7 +3,10 @@
 run with micro-inertia, the one without, and two semi-analytic references.
 
 Usage: /usr/bin/python3 scripts/plot_dispersion.py RUN_ON RUN_OFF \
-           --cell cases/cells/laminate.toml --out docs/images/laminate-pulse.png
+           --cell cases/cells/laminate.toml [--out laminate-pulse.png]
+
+Writes --out (default laminate-pulse.png in the current folder) and prints
+"wrote PATH".
 
 Reads RUN_*/probes.csv (t, <probe>_vx ... of `membrane run`) and the cell
 file with its two phases from materials/catalog.toml (isotropic or GVBO at
@@ -101,7 +104,7 @@ def main():
     ap.add_argument("run_on")
     ap.add_argument("run_off")
     ap.add_argument("--cell", required=True)
-    ap.add_argument("--out", required=True)
+    ap.add_argument("--out", default="laminate-pulse.png", help="PNG to write")
     args = ap.parse_args()
     on, off = read_probes(args.run_on), read_probes(args.run_off)
     L, d1, d2, M1, r1, M2, r2 = bilayer(args.cell)

@@ -4,10 +4,13 @@ any CSV with its header (`homogenize ... --out`), on one picture.
 
 Usage:
   /usr/bin/python3 scripts/plot_drive.py NAME --path shear --to 0.5 \
-      --rates 1e-3,1,1e3,1e5,1e6 --out drive.png [--materials BIN] [--library P]
+      --rates 1e-3,1,1e3,1e5,1e6 [--out PNG] [--materials BIN] [--library P]
       [--steps N] [--unload]
   /usr/bin/python3 scripts/plot_drive.py --csv A.csv:LABEL --csv B.csv:LABEL \
-      --path shear --out curves.png [--title TEXT]
+      --path shear [--out PNG] [--title TEXT]
+
+--out defaults to NAME-PATH.png (curves-PATH.png with --csv only) in the
+current folder; prints "wrote PNG".
 
 The driven pair is plotted: shear -> (eps_xy, sig_xy); uniaxial-strain and
 uniaxial-stress and biaxial-stress -> (eps_xx, sig_xx); confined -> (-eps_xx, -sig_xx), i.e.
@@ -31,13 +34,24 @@ def columns(path):
     return rows
 
 
-def pair(rows, path):
+# the paths of `materials drive` in words (titles; also plot_rom.py)
+PATH_WORDS = {"shear": "simple shear", "confined": "confined compression",
+              "uniaxial-stress": "uniaxial stress", "uniaxial-strain": "uniaxial strain",
+              "biaxial-stress": "equibiaxial plane stress"}
+
+
+def driven(path):
+    """(strain column, stress column, sign) of the driven pair; compression positive
+    (also plot_rom.py)."""
     if path == "shear":
-        e, s, sign = "eps_xy", "sig_xy", 1.0
-    elif path == "confined":
-        e, s, sign = "eps_xx", "sig_xx", -1.0
-    else:
-        e, s, sign = "eps_xx", "sig_xx", 1.0
+        return "eps_xy", "sig_xy", 1.0
+    if path == "confined":
+        return "eps_xx", "sig_xx", -1.0
+    return "eps_xx", "sig_xx", 1.0
+
+
+def pair(rows, path):
+    e, s, sign = driven(path)
     return ([sign * float(r[e]) for r in rows], [sign * float(r[s]) / 1e6 for r in rows])
 
 
@@ -55,7 +69,7 @@ def main():
     ap.add_argument("--library", default=None)
     ap.add_argument("--csv", action="append", default=[], help="FILE.csv:LABEL (repeat)")
     ap.add_argument("--title", default=None)
-    ap.add_argument("--out", required=True)
+    ap.add_argument("--out", help="PNG to write (default: NAME-PATH.png, or curves-PATH.png)")
     a = ap.parse_args()
 
     curves = []
@@ -73,7 +87,11 @@ def main():
                     cmd.append("--unload")
                 if a.library:
                     cmd += ["--library", a.library]
-                subprocess.run(cmd, check=True)
+                # its "drove ... in FILE" line names a temporary file: shown only on failure
+                done = subprocess.run(cmd, capture_output=True, text=True)
+                if done.returncode != 0:
+                    sys.exit("plot_drive: %s failed:\n%s%s" % (" ".join(cmd), done.stdout,
+                                                                 done.stderr))
                 curves.append(("%s /s" % rate, columns(out)))
     if not curves:
         sys.exit("nothing to plot: give NAME or --csv")
@@ -87,10 +105,16 @@ def main():
     ax.set_xlabel(xl)
     ax.set_ylabel(yl)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    ax.set_title(a.title or ("%s, %s" % (a.name or "", a.path)), fontsize=10)
+    ax.legend(fontsize=8, title="strain rate" if a.name and not a.csv else None,
+              title_fontsize=8)
+    words = PATH_WORDS[a.path]
+    if a.unload:
+        words += ", load and unload"
+    ax.set_title(a.title or (", ".join(filter(None, [a.name, words]))), fontsize=10)
     fig.tight_layout()
-    fig.savefig(a.out, dpi=90)
+    out = a.out or "%s-%s.png" % (a.name or "curves", a.path)
+    fig.savefig(out, dpi=90)
+    print("wrote " + out)
 
 
 if __name__ == "__main__":

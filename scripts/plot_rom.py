@@ -17,7 +17,7 @@ Usage:
       --partitions 1,8 --rates 1e2,2.6e3,1e5 --to 0.3 --steps 60 \
       --work rom-study --out rom-vs-full-field.png [--resolution N] [--bin build/bin]
 Prints the table (markdown) and writes the plot to --out and the table to
-WORK/table.md."""
+WORK/table.md, printing "wrote PATH" for each."""
 import argparse
 import csv
 import os
@@ -29,16 +29,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
+from plot_drive import PATH_WORDS, driven  # noqa: E402
+
 PATHS = ["uniaxial-stress", "shear", "confined"]
-
-
-def driven(path):
-    """(strain column, stress column, sign) of the driven pair; compression positive."""
-    if path == "shear":
-        return "eps_xy", "sig_xy", 1.0
-    if path == "confined":
-        return "eps_xx", "sig_xx", -1.0
-    return "eps_xx", "sig_xx", 1.0
 
 
 def curve(csv_path, path):
@@ -120,7 +113,8 @@ def main():
     with open(os.path.join(a.work, "table.md"), "w") as f:
         f.write(text)
 
-    fig, axes = plt.subplots(1, len(paths), figsize=(5 * len(paths), 4.2))
+    fig, axes = plt.subplots(1, len(paths), figsize=(4.6 * len(paths), 4.4),
+                             constrained_layout=True)
     if len(paths) == 1:
         axes = [axes]
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
@@ -128,19 +122,29 @@ def main():
     for ax, path in zip(axes, paths):
         for c, rate in enumerate(rates):
             e, s = curves[(path, rate, "ff")]
-            ax.plot(e, [v / 1e6 for v in s], "-", color=colours[c], label="full field, %s /s" % rate)
+            ax.plot(e, [v / 1e6 for v in s], "-", color=colours[c], label="%s /s" % rate)
             for j, k in enumerate(parts):
                 e, s = curves[(path, rate, k)]
-                ax.plot(e, [v / 1e6 for v in s], styles[j % 3], color=colours[c],
-                        label="reduced, %d per phase" % k if c == 0 else None)
-        ax.set_title(path)
-        ax.set_xlabel("driven strain" + (" (compression)" if path == "confined" else ""))
-        ax.set_ylabel("driven stress (MPa)")
+                ax.plot(e, [v / 1e6 for v in s], styles[j % 3], color=colours[c])
+        ax.set_title(PATH_WORDS[path], fontsize=10)
+        e, s, _ = driven(path)
+        sign = "-" if path == "confined" else ""
+        ax.set_xlabel("strain %s%s" % (sign, e.replace("eps_xy", "gamma_xy")))
+        ax.set_ylabel("stress %s%s (MPa)" % (sign, s))
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
+    # one legend for all panels, under them: colour = rate, line style = model
+    handles = [plt.Line2D([], [], color=colours[c], label="%s /s" % r) for c, r in enumerate(rates)]
+    handles.append(plt.Line2D([], [], color="k", ls="-", label="full field"))
+    handles += [plt.Line2D([], [], color="k", ls=styles[j % 3],
+                           label="reduced order, %d per phase" % k) for j, k in enumerate(parts)]
+    fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 0.0),
+               ncol=len(handles), fontsize=8, frameon=False)
+    fig.get_layout_engine().set(rect=(0, 0.07, 1, 0.93))
+    fig.suptitle("Reduced-order against full-field cell (%s): driven stress at %d rates"
+                 % (os.path.basename(a.cell), len(rates)))
     fig.savefig(a.out, dpi=110)
     print("wrote " + a.out)
+    print("wrote " + os.path.join(a.work, "table.md"))
 
 
 if __name__ == "__main__":

@@ -13,9 +13,12 @@ attribute), probes.csv (the probe `centre`) and reactions.csv (columns
   roof-history.png  centre vertical displacement and total support reaction
                     (magnitude of the sum of all reactions) against time (Fig. 13)
 
---image PATH also writes a combined picture (for the README) to PATH.
+--image PATH also writes a combined picture (for the README) to PATH
+(docs/images/blast-roof.png: --image docs/images/blast-roof.png). Prints
+"wrote PATH" for each picture.
 """
 import argparse
+import json
 import csv
 import glob
 import os
@@ -72,25 +75,37 @@ def shape_at_peak(run_dir):
     return xyz, xyz + u, times[k]
 
 
-def plot_side(out_dir, ax_list):
-    """Cross-section (y-z) through the node of peak vertical displacement,
-    nodes within 0.3 m of its x, over the faint cloud of all nodes."""
-    for ax, (sub, label, colour) in zip(ax_list, RUNS):
-        run_dir = os.path.join(out_dir, sub)
-        x0, x1, tk = shape_at_peak(run_dir)
+def peak_w(run_dir):
+    """summary.json max_abs_w: the peak |w| over every step and node (the
+    drawn state is the stored field step nearest to the centre's peak)."""
+    with open(os.path.join(run_dir, "summary.json")) as fh:
+        return float(json.load(fh)["max_abs_w"])
+
+
+def plot_side(out_dir, ax):
+    """Cross-sections (y-z) of both runs, each through the node of its peak
+    vertical displacement (nodes within 0.3 m of its x) at the stored step
+    nearest to the centre's peak, over the undeformed section; true scale."""
+    for sub, label, colour in RUNS:
+        x0, x1, tk = shape_at_peak(os.path.join(out_dir, sub))
         w = x1[:, 2] - x0[:, 2]
         k = int(np.argmax(np.abs(w)))
+        peak = peak_w(os.path.join(out_dir, sub))
         sel = np.abs(x0[:, 0] - x0[k, 0]) < 0.3
         order = np.argsort(x0[sel, 1])
-        ax.plot(x1[:, 1], x1[:, 2], ".", color=colour, ms=1, alpha=0.25)
-        ax.plot(x0[sel, 1][order], x0[sel, 2][order], "--", color="0.5", label="undeformed")
-        ax.plot(x1[sel, 1][order], x1[sel, 2][order], "-o", color=colour, ms=2,
-                label=f"{label}, section x = {x0[k, 0]:.1f} m, t = {tk * 1e3:.0f} ms")
-        ax.set_aspect("equal")
-        ax.set_xlabel("y (m), across the span")
-        ax.set_ylabel("z (m)")
-        ax.set_title(f"{label}: peak vertical displacement {abs(w[k]):.2f} m", fontsize=10)
-        ax.legend(loc="lower center", fontsize=7, framealpha=0.6)
+        if sub == RUNS[0][0]:
+            ax.plot(x0[sel, 1][order], x0[sel, 2][order], "--", color="0.5", label="undeformed")
+        ax.plot(x1[sel, 1][order], x1[sel, 2][order], "-o", color=colour, ms=2.5,
+                label=f"{label}: peak |w| {peak:.2f} m; drawn at t = {tk * 1e3:.0f} ms, "
+                      f"section x = {x0[k, 0]:.1f} m")
+    ax.set_aspect("equal")
+    ax.set_xlabel("y (m), across the span")
+    ax.set_ylabel("z (m)")
+    ax.grid(alpha=0.3)
+    ax.set_title("Roof cross-section near its peak vertical displacement (true scale)", fontsize=10)
+    # under the axes: the curves fill the panel
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=1, fontsize=8,
+              frameon=False)
 
 
 def plot_histories(out_dir, au, ar):
@@ -103,8 +118,8 @@ def plot_histories(out_dir, au, ar):
     au.set_ylabel("centre vertical displacement (m)")
     ar.set_ylabel("total support reaction (kN)")
     ar.set_xlabel("t (ms)")
-    au.legend(fontsize=8)
-    ar.legend(fontsize=8)
+    au.legend(loc="best", fontsize=8)
+    ar.legend(loc="best", fontsize=8)
     au.grid(alpha=0.3)
     ar.grid(alpha=0.3)
 
@@ -118,27 +133,34 @@ def main():
         if not os.path.isdir(os.path.join(args.out_dir, sub)):
             sys.exit(f"plot_roof: {args.out_dir}/{sub} is missing (run with compare_without_drag = true)")
 
-    fig, axes = plt.subplots(2, 1, figsize=(7, 6.5), constrained_layout=True)
-    plot_side(args.out_dir, axes)
-    fig.savefig(os.path.join(args.out_dir, "roof-side.png"), dpi=110)
+    written = []
+    fig, ax = plt.subplots(figsize=(8, 3.6), constrained_layout=True)
+    plot_side(args.out_dir, ax)
+    written.append(os.path.join(args.out_dir, "roof-side.png"))
+    fig.savefig(written[-1], dpi=110, bbox_inches="tight")  # equal aspect: crop the margins
     plt.close(fig)
 
     fig, (au, ar) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
     plot_histories(args.out_dir, au, ar)
-    fig.savefig(os.path.join(args.out_dir, "roof-history.png"), dpi=110)
+    fig.suptitle("Blast-loaded roof: centre displacement and support reaction")
+    written.append(os.path.join(args.out_dir, "roof-history.png"))
+    fig.savefig(written[-1], dpi=110)
     plt.close(fig)
 
     if args.image:
-        fig = plt.figure(figsize=(12, 6), constrained_layout=True)
-        gs = fig.add_gridspec(2, 2)
-        plot_side(args.out_dir, [fig.add_subplot(gs[0, 0]), fig.add_subplot(gs[1, 0])])
-        au = fig.add_subplot(gs[0, 1])
+        fig = plt.figure(figsize=(11, 7.5), constrained_layout=True)
+        gs = fig.add_gridspec(2, 2, height_ratios=[1, 1.15])
+        plot_side(args.out_dir, fig.add_subplot(gs[0, :]))
+        au = fig.add_subplot(gs[1, 0])
         ar = fig.add_subplot(gs[1, 1], sharex=au)
         plot_histories(args.out_dir, au, ar)
+        au.set_xlabel("t (ms)")
         fig.suptitle("Blast-loaded fabric roof (drag paper, section 5): with and without drag")
         fig.savefig(args.image, dpi=100)
         plt.close(fig)
-    print(f"plot_roof: wrote roof-side.png and roof-history.png in {args.out_dir}")
+        written.append(args.image)
+    for path in written:
+        print(f"wrote {path}")
 
 
 if __name__ == "__main__":
