@@ -32,10 +32,13 @@
 # Env: SIZES (default "16 24 32 48 64"), BENCH_TOL (1e-5), BENCH_THREADS (2),
 #      CONTRASTS (default "10 1000 void"), BENCH_OUT (default
 #      BUILD/bench-composite-accuracy). At least three sizes (the fit has up
-#      to four unknowns over two kinds). Defaults: 30 runs; the 64^3 runs at
-#      contrast 1000 and with pores dominate (one CG iteration at 64^3 with 2
-#      threads is about 10-20 ms, times 6 load cases times up to ~130
-#      iterations): a few minutes on a quiet 2-core machine, under 10.
+#      to four unknowns over two kinds; with fewer the reference is flagged
+#      uncertain). Defaults: 30 runs, about 2 minutes on a quiet 2-core
+#      machine (estimated, not timed: one CG iteration at 64^3 on 2 threads
+#      is about 1/8 of the ~200 ms at 128^3 in bench/homogenize/sphere-128.md,
+#      and the costliest run, contrast 1000 with composite voxels at 64^3,
+#      takes ~130 iterations per load case, 6 load cases: ~20 s; the cell
+#      builds and FFT plans add about a second per run).
 set -euo pipefail
 source "$(dirname "$0")/common.sh"
 bench_setup bench-composite-accuracy "${1:-build}"
@@ -57,14 +60,14 @@ import re, sys
 text, contrast, composite = open(sys.argv[1]).read(), sys.argv[2], sys.argv[3]
 text = re.sub(r"(?m)^size = .*\n", "", text)  # scale-free: no dispersion tensor
 text = text.replace("[cell]\n", "[cell]\ncomposite_voxels = %s\n" % composite, 1)
-head, sep, sphere = text.partition('name = "sphere"\n')
-assert sep, "cases/cells/sphere.toml: no phase named sphere"
-phase, sep, rest = sphere.partition("\n[[inclusions]]")
+head, name, sphere = text.partition('name = "sphere"\n')
+assert name, "cases/cells/sphere.toml: no phase named sphere"
+phase, groups, rest = sphere.partition("\n[[inclusions]]")
 if contrast == "void":
     phase = 'law = "void"\n'
 else:
     phase = re.sub(r"(?m)^E = .*$", "E = %.6g" % (156e6 * float(contrast)), phase)
-print(head + sep + phase + sep + rest, end="")
+print(head + name + phase + groups + rest, end="")
 PY
   echo "$file"
 }
@@ -123,7 +126,8 @@ def reference(rs, key):
     kinds = [k for k in KINDS if any(r["kind"] == k for r in rs)]
     series = {k: sorted((r["n"], r["fraction"]) for r in rs if r["kind"] == k) for k in kinds}
     if len(kinds) == 2 and series[kinds[0]] == series[kinds[1]]:
-        kinds = kinds[:1]  # the same voxels (pores): one first-order term
+        kinds = kinds[:1]  # the same voxels (pores): one series, one first-order term
+        rs = [r for r in rs if r["kind"] == kinds[0]]
     rows = [[1.0, r["fraction"] - 0.19] +
             [1.0 / r["n"] if r["kind"] == k or len(kinds) == 1 else 0.0 for k in kinds]
             for r in rs]
