@@ -199,7 +199,11 @@ for c in contrasts:
             tc, ts = got["composite"][0], got["staircase"][0]
             win = ("none" if math.isinf(tc) and math.isinf(ts) else
                    "composite" if tc < ts else "staircase" if ts < tc else "tie")
-            if ref[key][1] > 0.3 * target * abs(ref[key][0]):
+            voxels = {k: sorted((r["n"], r["fraction"]) for r in rs if r["kind"] == k)
+                      for k in KINDS}
+            if voxels["composite"] == voxels["staircase"]:
+                win = "same voxels (a pore's cut voxels stay whole)"
+            elif not ref[key][1] <= 0.3 * target * abs(ref[key][0]):  # NaN: uncertain too
                 win += " (reference uncertain)"
             summary.append((c, key, target, got["composite"][1], got["staircase"][1], win))
 
