@@ -40,8 +40,7 @@ namespace {
 
 /// @return whether @p c is a pore's stiffness or a laminate with a pore ply:
 /// finite, symmetric, positive semi-definite (its smallest eigenvalue at
-/// least -1e-10 of its largest: the round-off of a laminate's null space),
-/// and not positive definite
+/// least -1e-10 of its largest: the round-off of a laminate's null space)
 bool poreLike(const materials::Stiffness& c) {
   const materials::Matrix6& m = c.matrix();
   if (!m.allFinite() || c.asymmetry() > 1e-10)

@@ -128,6 +128,8 @@ LawSpec readLawSpec(const core::TableReader& t, VoidLaw void_law) {
     t.fail("law", kReducedOrderIsAnEntry);
   if (*kind == LawKind::Void && !pores)
     t.fail("law", kVoidIsAPore);
+  if (pores && *kind != LawKind::Void && t.has("E") && t.getDouble("E") == 0)
+    t.fail("E", "must be positive (Pa); a pore is law = \"void\" (no E, nu or density)");
   return readLawConstants(t, *kind);
 }
 

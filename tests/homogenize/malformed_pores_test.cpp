@@ -59,6 +59,13 @@ TEST(MalformedPores, VoidPhaseHasNoConstantsNorDensity) {
   // an unknown law in a cell names 'void' among the choices
   e = errorOf([] { cellFrom(kSolid + "[[phases]]\nname = \"pore\"\nlaw = \"vacuum\"\n" + kSphere); });
   EXPECT_TRUE(has(e, "phases[1].law") && has(e, "'vacuum'") && has(e, "'void' for a pore")) << e;
+  // E = 0 points to the void law
+  e = errorOf([] {
+    cellFrom(kSolid + "[[phases]]\nname = \"pore\"\nlaw = \"isotropic\"\nE = 0\nnu = 0.3\n"
+                      "density = 1\n" + kSphere);
+  });
+  EXPECT_TRUE(has(e, "phases[1].E") && has(e, "must be positive") && has(e, "law = \"void\""))
+      << e;
   // a well-formed void phase reads: zero stiffness and density
   const micro::CellSpec spec = cellFrom(kSolid + kPore + kSphere);
   EXPECT_TRUE(spec.phases[1].isVoid());
