@@ -25,12 +25,17 @@ CellOperator::CellOperator(const Grid& grid, std::vector<std::int32_t> phase,
     for (int i = 0; i < 6; ++i)
       for (int j = 0; j < 6; ++j)
         C_.push_back(c(i, j));
-  // isotropic phases take a 10-flop stress instead of the 36-flop 6x6 product
+  // isotropic phases take a 10-flop stress instead of the 36-flop 6x6 product;
+  // a pore (C = 0) is isotropic with lambda = mu = 0, a laminate with a pore
+  // ply (singular, mu or the bulk modulus may vanish) is not
   for (const auto& c : C) {
     const double lambda = c(0, 1), mu = c(3, 3);
-    const materials::Matrix6 iso = materials::Stiffness::fromLame(lambda, mu).matrix();
-    const bool is_iso =
-        (c.matrix() - iso).cwiseAbs().maxCoeff() <= 1e-14 * c.matrix().cwiseAbs().maxCoeff();
+    bool is_iso = c.matrix().isZero(0.0);
+    if (!is_iso && mu > 0 && 3 * lambda + 2 * mu > 0) {
+      const materials::Matrix6 iso = materials::Stiffness::fromLame(lambda, mu).matrix();
+      is_iso =
+          (c.matrix() - iso).cwiseAbs().maxCoeff() <= 1e-14 * c.matrix().cwiseAbs().maxCoeff();
+    }
     iso_.push_back(is_iso ? 1 : 0);
     lame_.push_back(is_iso ? lambda : 0.0);
     lame_.push_back(is_iso ? mu : 0.0);

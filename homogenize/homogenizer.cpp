@@ -9,6 +9,7 @@
 #include "homogenize/green_operator.hpp"
 #include "homogenize/start_residual.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <omp.h>
 
 #include <algorithm>
@@ -35,22 +36,47 @@ std::array<int, 6> Result::iterations() const {
   return it;
 }
 
+namespace {
+
+/// @return whether @p c is a pore's stiffness or a laminate with a pore ply:
+/// finite, symmetric, positive semi-definite (its smallest eigenvalue at
+/// least -1e-10 of its largest: the round-off of a laminate's null space)
+bool poreLike(const materials::Stiffness& c) {
+  const materials::Matrix6& m = c.matrix();
+  if (!m.allFinite() || c.asymmetry() > 1e-10)
+    return false;
+  if (m.isZero(0.0))
+    return true; // a void phase
+  Eigen::SelfAdjointEigenSolver<materials::Matrix6> es(m, Eigen::EigenvaluesOnly);
+  return es.eigenvalues()(0) >= -1e-10 * es.eigenvalues()(5);
+}
+
+} // namespace
+
 void referenceMedium(const std::vector<materials::Stiffness>& C, double& lambda0, double& mu0) {
   double kmin = std::numeric_limits<double>::max(), kmax = 0;
   double gmin = std::numeric_limits<double>::max(), gmax = 0;
   // one 6x6 inversion per phase (composite voxels: tens of thousands of
-  // phases), on the threads; min and max do not depend on the order
+  // phases), on the threads; min and max do not depend on the order. A
+  // singular C (a pore, a laminate with a pore ply) has no Reuss moduli: it
+  // enters the maxima only
   const long count = static_cast<long>(C.size());
-#pragma omp parallel for schedule(static) reduction(min : kmin, gmin) reduction(max : kmax, gmax)
+  long definite = 0;
+#pragma omp parallel for schedule(static) reduction(min : kmin, gmin) \
+    reduction(max : kmax, gmax) reduction(+ : definite)
   for (long p = 0; p < count; ++p) {
     const auto& c = C[static_cast<std::size_t>(p)];
+    kmax = std::max(kmax, materials::voigtBulk(c));
+    gmax = std::max(gmax, materials::voigtShear(c));
+    if (!c.valid())
+      continue;
+    ++definite;
     double kr = 0, gr = 0;
     materials::reussModuli(c, kr, gr);
     kmin = std::min(kmin, kr);
-    kmax = std::max(kmax, materials::voigtBulk(c));
     gmin = std::min(gmin, gr);
-    gmax = std::max(gmax, materials::voigtShear(c));
   }
+  LAMINA_CHECK(definite > 0, "the cell is all void: no voxel has a positive definite stiffness");
   const double K0 = std::sqrt(kmin * kmax);
   mu0 = std::sqrt(gmin * gmax);
   lambda0 = K0 - 2.0 * mu0 / 3.0;
@@ -83,16 +109,15 @@ Homogenizer::Homogenizer(const Grid& grid, const Distribution& dist,
   LAMINA_CHECK(phase_.size() == dist_.localSize(), "phase map size does not match the grid");
   LAMINA_CHECK(opt_.tol > 0, "tolerance must be positive");
   // one stiffness per composite voxel (tens of thousands): checked on the
-  // threads, the first invalid one again to throw its message
+  // threads, the first invalid one again to throw its message; a pore (C =
+  // 0) and a laminate with a pore ply (positive semi-definite) are valid
   const long phases = static_cast<long>(C_.size());
   long bad = phases;
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (long p = 0; p < phases; ++p) {
-    try {
-      C_[static_cast<std::size_t>(p)].validate("");
-    } catch (...) { // thrown again below, outside the region
+    const materials::Stiffness& c = C_[static_cast<std::size_t>(p)];
+    if (!c.valid() && !poreLike(c))
       bad = std::min(bad, p);
-    }
   }
   if (bad < phases)
     C_[static_cast<std::size_t>(bad)].validate("phase " + std::to_string(bad));

@@ -116,9 +116,39 @@ materials::Material makeEntry(const std::string& name, const micro::CellSpec& sp
   return m;
 }
 
+namespace {
+
+/// Refuses a cell with a size (its entry gets the dispersion tensor) and a
+/// void phase: eq. 39 takes the displacement fluctuation of every voxel, and
+/// inside a pore the cell problem leaves it undetermined.
+void checkDispersion(const micro::CellSpec& spec) {
+  if (!spec.physical_size)
+    return;
+  for (const micro::Phase& p : spec.phases)
+    if (p.isVoid())
+      throw Error("phase '" + p.name + "' is void (a pore) and the cell has a size: the "
+                  "dispersion tensor (micro-inertia) needs the displacement in every voxel, "
+                  "which a pore leaves undetermined; leave size out for a porous cell",
+                  {spec.file, 0, "cell.size"});
+}
+
+/// Refuses, for a library entry, the singular C of a porous cell whose solid
+/// does not span it (void layers, solid inclusions in a void matrix).
+void checkPercolates(const micro::CellSpec& spec, const materials::Stiffness& C) {
+  for (const micro::Phase& p : spec.phases)
+    if (p.isVoid() && !C.valid())
+      throw Error("the effective stiffness is singular: phase '" + p.name +
+                      "' is void and the solid phases do not hold the cell together in every "
+                      "direction",
+                  {spec.file, 0, "phases"});
+}
+
+} // namespace
+
 EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& cell,
                            const std::string& name, double J, const Options& options,
                            const Distribution* dist) {
+  checkDispersion(spec);
   EntryResult e{name, J, {}, std::nullopt};
   const Grid grid = gridOf(cell);
   const Distribution serial = Distribution::serial(grid);
@@ -200,6 +230,7 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
   for (std::size_t s = 0; s < states.size(); ++s) {
     const double J = states[s];
     EntryResult e = homogenizeCell(spec, cell, entry_names[s], J, options, &d);
+    checkPercolates(spec, e.result.C); // a library entry's C is positive definite
     if (d.rank() == 0) // one writer
       // The phase map goes to an HDF5 side file beside the library (DESIGN.md:
       // large arrays never enter the text file), written in the same

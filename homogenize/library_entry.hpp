@@ -50,7 +50,9 @@ struct EntryResult {
 /// (spec.physical_size) also its dispersion tensor from the same solves.
 /// Distributed (@p dist): every rank calls this; rank 0 holds @p cell's
 /// whole map, builds the voxel materials, scatters them and gets the
-/// dispersion.
+/// dispersion. Throws lamina::Error for a cell with a size and a void phase
+/// (the dispersion tensor needs the displacement inside the pores, which the
+/// cell problem leaves undetermined).
 EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& cell,
                            const std::string& name, double J, const Options& options,
                            const Distribution* dist = nullptr);
@@ -59,7 +61,9 @@ EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& c
 /// the entries to @p library in one transaction (all or none). Checks all
 /// names before computing: an invalid name, two states whose names collide
 /// and an existing entry (unless @p overwrite) are errors. @p report, if
-/// set, is called for each entry once all are committed.
+/// set, is called for each entry once all are committed. A porous cell
+/// whose C comes out singular (its solid does not span the cell) is an
+/// error: a library entry's C is positive definite.
 /// Distributed (@p dist): every rank calls this; rank 0 holds the cell's
 /// whole phase map and scatters it, and alone writes the side files and the
 /// library and calls @p report.

@@ -86,8 +86,14 @@ std::string fieldsXdmf(const std::string& h5name, const Grid& g,
 
 std::vector<materials::LawPtr> phaseLaws(const micro::CellSpec& spec) {
   std::vector<materials::LawPtr> laws;
-  for (const micro::Phase& p : spec.phases)
+  for (const micro::Phase& p : spec.phases) {
+    if (p.isVoid())
+      throw Error("phase '" + p.name + "' is void (a pore): nonlinear runs (--path, "
+                  "--tangent-rates) take cells whose every phase has a stiffness; the linear "
+                  "homogenization (no --path) handles pores",
+                  {spec.file, 0, "phases.law"});
     laws.push_back(p.model);
+  }
   return laws;
 }
 

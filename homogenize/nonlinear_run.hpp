@@ -26,7 +26,8 @@ struct PathSpec {
   bool unload = false; ///< back to zero at the same rate
 };
 
-/// @return the law of every phase of @p spec (Phase::model)
+/// @return the law of every phase of @p spec (Phase::model); throws
+/// lamina::Error for a void phase (nonlinear runs do not handle pores)
 std::vector<materials::LawPtr> phaseLaws(const micro::CellSpec& spec);
 
 /// @return the files runPath() writes for @p out (none when empty): @p out,

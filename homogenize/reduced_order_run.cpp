@@ -29,6 +29,11 @@ std::vector<materials::ReducedOrderPhase> reducedOrderPhases(const micro::CellSp
 
 void checkReducible(const micro::CellSpec& spec, const micro::UnitCell& cell) {
   for (const micro::Phase& ph : spec.phases)
+    if (ph.isVoid())
+      throw Error("phase '" + ph.name + "' is void (a pore): a reduced-order cell takes cells "
+                  "whose every phase has a stiffness",
+                  {spec.file, 0, "phases.law"});
+  for (const micro::Phase& ph : spec.phases)
     if (!ph.J.empty() && !(ph.J.size() == 1 && ph.J[0] == 1.0))
       throw Error("phase '" + ph.name + "' lists gvbo states J: a reduced-order cell takes "
                   "every phase at J = 1 (its law then follows J at every point); remove J",

@@ -26,7 +26,7 @@ std::vector<materials::ReducedOrderPhase> reducedOrderPhases(const micro::CellSp
 /// has its phase's single stiffness: a yarn following its path rotates its
 /// phase voxel by voxel (UnitCell::oriented), so its phase has no one L0.
 /// Composite voxels are fine: the plain map (the voxel centre's phase) is
-/// what the reduced-order build uses.
+/// what the reduced-order build uses. A void phase (a pore) is refused.
 void checkReducible(const micro::CellSpec& spec, const micro::UnitCell& cell);
 
 /// checkReducible, then the build of @p cell's plain phase map, with

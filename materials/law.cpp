@@ -16,7 +16,8 @@ const char* toString(LawKind k) {
 std::string lawKindNames() {
   std::vector<std::string_view> names;
   for (const auto& [name, kind] : kLawKindNames)
-    if (kind != LawKind::ReducedOrder) // referred to by an entry's name, not given with keys
+    // reduced-order: referred to by an entry's name; void: a cell's pore, no keys
+    if (kind != LawKind::ReducedOrder && kind != LawKind::Void)
       names.push_back(name);
   return core::choiceList(names);
 }

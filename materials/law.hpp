@@ -35,6 +35,11 @@ enum class LawKind {
   /// with keys: it is a library entry made by `homogenize --reduced-order`
   /// and referred to by its name; readLawSpec refuses it.
   ReducedOrder,
+  /// "void": a pore of a cell (zero stiffness and density, no keys). Only a
+  /// cell's [[phases]] may give it (readLawSpec with VoidLaw::Allowed), and
+  /// only the linear homogenization takes it (docs/homogenize-solver.md,
+  /// "Pores").
+  Void,
 };
 
 /// The file spellings of LawKind (parse, print, list).
@@ -43,13 +48,15 @@ inline constexpr auto kLawKindNames =
                               {"transversely-isotropic", LawKind::TransverselyIsotropic},
                               {"anisotropic", LawKind::Anisotropic},
                               {"gvbo", LawKind::Gvbo},
-                              {"reduced-order", LawKind::ReducedOrder}});
+                              {"reduced-order", LawKind::ReducedOrder},
+                              {"void", LawKind::Void}});
 
 /// @return the file spelling of @p k ("isotropic", ...)
 const char* toString(LawKind k);
 /// @return the laws a file may give with keys, for messages:
 /// "'isotropic', 'transversely-isotropic', 'anisotropic' or 'gvbo'" (not
-/// "reduced-order", which is referred to by an entry's name)
+/// "reduced-order", which is referred to by an entry's name, nor "void", a
+/// cell's pore without keys)
 std::string lawKindNames();
 
 /// Stress or strain vector in lamina order.

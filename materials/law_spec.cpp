@@ -29,6 +29,16 @@ constexpr const char* kReducedOrderIsAnEntry =
     "'reduced-order' is not a law with keys: a reduced-order cell is a library entry made by "
     "`homogenize --reduced-order`, referred to by its name (materials drive NAME)";
 
+constexpr const char* kVoidIsAPore =
+    "'void' is a pore (zero stiffness): only a cell's [[phases]] may have one";
+
+/// A void law has no elastic constants: the first one @p t gives is an error.
+void checkNoConstants(const core::TableReader& t) {
+  for (const char* key : {"E", "nu", "C", "E1", "E2", "G12", "nu12", "nu23", "gvbo"})
+    if (t.has(key))
+      t.fail(key, "a void phase (a pore) has zero stiffness: no elastic constants");
+}
+
 double positive(const core::TableReader& t, const char* key) {
   const double v = t.getDouble(key);
   if (!(v > 0) || !std::isfinite(v))
@@ -66,6 +76,9 @@ LawSpec readLawConstants(const core::TableReader& t, LawKind kind) {
     break;
   case LawKind::ReducedOrder:
     t.fail("law", kReducedOrderIsAnEntry);
+  case LawKind::Void:
+    checkNoConstants(t);
+    return s; // C = 0: nothing to validate
   }
   try {
     s.C.validate("law");
@@ -81,11 +94,12 @@ LawPtr LawSpec::make() const {
     return std::make_shared<GvboLaw>(*gvbo);
   }
   LAMINA_CHECK(kind != LawKind::ReducedOrder, kReducedOrderIsAnEntry);
-  return std::make_shared<LinearElasticLaw>(kind, C);
+  return std::make_shared<LinearElasticLaw>(kind, C); // void: C = 0
 }
 
 void writeLawSpec(std::ostream& os, const LawSpec& law) {
   LAMINA_CHECK(law.kind != LawKind::ReducedOrder, kReducedOrderIsAnEntry);
+  LAMINA_CHECK(law.kind != LawKind::Void, kVoidIsAPore);
   if (law.kind != LawKind::Gvbo) {
     os << "law = \"" << toString(LawKind::Anisotropic) << "\"\n";
     writeMatrix6(os, "C", law.C.matrix());
@@ -103,13 +117,19 @@ void writeLawSpec(std::ostream& os, const LawSpec& law) {
   os << " }\n";
 }
 
-LawSpec readLawSpec(const core::TableReader& t) {
+LawSpec readLawSpec(const core::TableReader& t, VoidLaw void_law) {
   const std::string name = t.getString("law");
   const std::optional<LawKind> kind = kLawKindNames.parse(name);
+  const bool pores = void_law == VoidLaw::Allowed;
   if (!kind)
-    t.fail("law", "unknown law '" + name + "' (expected " + lawKindNames() + ")");
+    t.fail("law", "unknown law '" + name + "' (expected " + lawKindNames() +
+                      (pores ? ", or 'void' for a pore)" : ")"));
   if (*kind == LawKind::ReducedOrder)
     t.fail("law", kReducedOrderIsAnEntry);
+  if (*kind == LawKind::Void && !pores)
+    t.fail("law", kVoidIsAPore);
+  if (pores && *kind != LawKind::Void && t.has("E") && t.getDouble("E") == 0)
+    t.fail("E", "must be positive (Pa); a pore is law = \"void\" (no E, nu or density)");
   return readLawConstants(t, *kind);
 }
 

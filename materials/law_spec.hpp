@@ -7,7 +7,8 @@
 /// Keys by `law` (SI units): `isotropic`: E, nu; `transversely-isotropic`:
 /// E1, E2, G12, nu12, nu23 (axis x); `anisotropic`: C (6 rows of 6, lamina
 /// order); `gvbo`: E, nu (= E0, nu0) and a `gvbo` sub-table of Et, p, a1, a2,
-/// a3, k1, k2, k3, k4, Em, A0, Ac, Af (polyurea chapter, Table 1).
+/// a3, k1, k2, k3, k4, Em, A0, Ac, Af (polyurea chapter, Table 1); `void`
+/// (a cell's pore): no keys, C = 0 (only where the caller allows it).
 
 #include "materials/gvbo.hpp"
 #include "materials/law.hpp"
@@ -31,12 +32,19 @@ struct LawSpec {
   LawPtr make() const;
 };
 
+/// Whether a reader takes `law = "void"` (a pore: zero stiffness).
+enum class VoidLaw {
+  Refused, ///< catalog entries, case sections, library entries: a material has stiffness
+  Allowed  ///< a cell's [[phases]] (the linear homogenization handles pores)
+};
+
 /// Reads the law of @p t from key `law` and the keys of that law. Throws
 /// lamina::Error naming the file and key for an unknown law, `law =
 /// "reduced-order"` (a library entry referred to by its name, not a law with
-/// keys), a missing key, E <= 0, nu outside (-1, 0.5), or a C that is not
-/// symmetric positive definite.
-LawSpec readLawSpec(const core::TableReader& t);
+/// keys), `law = "void"` unless @p void_law allows it or with elastic
+/// constants, a missing key, E <= 0, nu outside (-1, 0.5), or a C that is
+/// not symmetric positive definite.
+LawSpec readLawSpec(const core::TableReader& t, VoidLaw void_law = VoidLaw::Refused);
 
 /// Writes @p law as TOML lines that readLawSpec reads back exactly: a gvbo
 /// law as `law = "gvbo"`, E, nu and an inline `gvbo` table of its 13
@@ -44,7 +52,8 @@ LawSpec readLawSpec(const core::TableReader& t);
 /// law is its C; 17 significant digits, bit for bit).
 void writeLawSpec(std::ostream& os, const LawSpec& law);
 
-/// Reads the keys of law @p kind from @p t (as readLawSpec, `law` already known).
+/// Reads the keys of law @p kind from @p t (as readLawSpec, `law` already
+/// known; LawKind::Void: checks that @p t gives no elastic constants).
 LawSpec readLawConstants(const core::TableReader& t, LawKind kind);
 
 /// Stiffness of a transversely isotropic material with axis x from its

@@ -92,6 +92,26 @@ double Stiffness::smallestEigenvalue() const {
   return es.eigenvalues()(0);
 }
 
+namespace {
+/// The fast path of validate: all eigenvalues are positive and the largest
+/// is at most the trace, so a Cholesky factorisation of C - 1e-12 tr(C) I
+/// proves lo > 1e-12 tr(C) >= 1e-12 hi.
+bool cholesky(const Matrix6& c) {
+  const double tr = c.trace();
+  return tr > 0 && (c - 1e-12 * tr * Matrix6::Identity()).llt().info() == Eigen::Success;
+}
+} // namespace
+
+bool Stiffness::valid() const {
+  if (!c_.allFinite() || asymmetry() > 1e-10)
+    return false;
+  if (cholesky(c_))
+    return true;
+  Eigen::SelfAdjointEigenSolver<Matrix6> es(c_, Eigen::EigenvaluesOnly);
+  const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(5);
+  return hi > 0 && lo > 1e-12 * hi;
+}
+
 void Stiffness::validate(const std::string& name) const {
   const ErrorContext ctx{"", 0, name};
   if (!c_.allFinite())
@@ -101,11 +121,8 @@ void Stiffness::validate(const std::string& name) const {
                     std::to_string(asymmetry()) + ")",
                 ctx);
   // Fast path (a homogenization validates one stiffness per composite voxel,
-  // tens of thousands): all eigenvalues are positive and the largest is at
-  // most the trace, so a Cholesky factorisation of C - 1e-12 tr(C) I
-  // proves lo > 1e-12 tr(C) >= 1e-12 hi. Otherwise the eigenvalues decide.
-  const double tr = c_.trace();
-  if (tr > 0 && (c_ - 1e-12 * tr * Matrix6::Identity()).llt().info() == Eigen::Success)
+  // tens of thousands): cholesky(). Otherwise the eigenvalues decide.
+  if (cholesky(c_))
     return;
   Eigen::SelfAdjointEigenSolver<Matrix6> es(c_, Eigen::EigenvaluesOnly);
   const double lo = es.eigenvalues()(0), hi = es.eigenvalues()(5);

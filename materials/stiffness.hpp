@@ -64,6 +64,9 @@ public:
   /// symmetric (to 1e-10 relative) and positive definite (smallest
   /// eigenvalue > 1e-12 of the largest).
   void validate(const std::string& name) const;
+  /// @return whether validate() would accept the matrix (no exception: for
+  /// callers that sort stiffnesses, e.g. a pore's C = 0 from the others)
+  bool valid() const;
   /// @return the smallest eigenvalue of the symmetric part (Pa)
   double smallestEigenvalue() const;
   /// @return max |C - C^T| / max |C|

@@ -330,7 +330,8 @@ void readSize(const core::TableReader& c, CellSpec& cell) {
 }
 
 /// [[phases]]: at least one (the first is the matrix), distinct names and
-/// ids (an image cell needs an id on each), at most one J sweep.
+/// ids (an image cell needs an id on each), at most one J sweep, not all
+/// void.
 void readPhases(const core::TableReader& root, const CatalogProvider& catalog, CellSpec& cell) {
   const auto phases = root.tableArray("phases");
   if (phases.empty())
@@ -353,6 +354,11 @@ void readPhases(const core::TableReader& root, const CatalogProvider& catalog, C
     }
     cell.phases.push_back(std::move(ph));
   }
+  bool solid = false;
+  for (const Phase& p : cell.phases)
+    solid = solid || !p.isVoid();
+  if (!solid)
+    root.fail("phases", "every phase is void: a cell needs a phase with stiffness");
   int swept = 0;
   for (std::size_t i = 0; i < phases.size(); ++i)
     if (cell.phases[i].J.size() > 1 && ++swept > 1)

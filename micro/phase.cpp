@@ -19,6 +19,7 @@ materials::Stiffness Phase::stiffnessAt(double J) const {
 
 bool Phase::isotropic() const {
   return law == materials::LawKind::Isotropic || law == materials::LawKind::Gvbo ||
+         law == materials::LawKind::Void ||
          materials::classify(C, 1e-12).cls == materials::SymmetryClass::Isotropic;
 }
 
@@ -42,16 +43,21 @@ Phase readPhase(const core::TableReader& t, const CatalogProvider& catalog) {
       t.fail("law", "catalog entry '" + cname + "' has law '" + materials::toString(ph.law) + "'");
   } else {
     ph.source = "inline";
-    const materials::LawSpec law = materials::readLawSpec(t);
+    const materials::LawSpec law = materials::readLawSpec(t, materials::VoidLaw::Allowed);
     ph.law = law.kind;
     ph.C = law.C;
     ph.gvbo = law.gvbo;
   }
   ph.model = ph.lawSpec().make();
-  if (t.has("density") || ph.source == "inline")
-    ph.density = t.getDouble("density");
-  if (!(ph.density > 0) || !std::isfinite(ph.density))
-    t.fail("density", "density must be positive (kg/m^3)");
+  if (ph.isVoid()) { // a pore: no mass
+    if (t.has("density"))
+      t.fail("density", "a void phase (a pore) has zero density: leave density out");
+  } else {
+    if (t.has("density") || ph.source == "inline")
+      ph.density = t.getDouble("density");
+    if (!(ph.density > 0) || !std::isfinite(ph.density))
+      t.fail("density", "density must be positive (kg/m^3)");
+  }
   if (t.has("J")) {
     if (!ph.gvbo)
       t.fail("J", "a state J applies to gvbo phases only");

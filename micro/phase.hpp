@@ -7,7 +7,9 @@
 /// "transversely-isotropic", "anisotropic" (C, 6x6, lamina order, Pa) and
 /// "gvbo" (the polyurea chapter's law; for a linear
 /// homogenization it contributes its instantaneous isotropic moduli at a
-/// matrix state J, eqs. 13-16, never below the initial moduli). A phase can
+/// matrix state J, eqs. 13-16, never below the initial moduli); "void" is a
+/// pore (zero stiffness and density, no other keys; linear homogenization
+/// only, docs/homogenize-solver.md "Pores"). A phase can
 /// instead name a catalog entry (`catalog = "NAME"`), which supplies law,
 /// parameters and density.
 
@@ -35,7 +37,7 @@ struct Phase {
   materials::LawKind law = materials::LawKind::Isotropic; ///< which law
   std::string source;                                     ///< "catalog:NAME" or "inline"
   materials::Stiffness C; ///< elastic stiffness (gvbo: at J = 1), lamina order, Pa
-  double density = 0;     ///< kg/m^3, > 0
+  double density = 0;     ///< kg/m^3, > 0 (0 for a void phase)
   std::optional<materials::GvboParameters> gvbo; ///< set for law "gvbo"
   std::vector<double> J;                         ///< gvbo states to homogenize at (empty: J = 1)
   /// The law object of the phase (shared by all its voxels): GvboLaw or
@@ -50,6 +52,8 @@ struct Phase {
   /// @return the law as its file gave it (kind, C, GVBO parameters): the
   /// spec model was made from
   materials::LawSpec lawSpec() const { return {law, C, gvbo}; }
+  /// @return whether the phase is a pore (law "void": C = 0, density 0)
+  bool isVoid() const { return law == materials::LawKind::Void; }
   /// @return whether every rotation leaves the phase's stiffness as it is:
   /// law isotropic or gvbo (isotropic at every J), or a C classified
   /// isotropic to 1e-12 of max |C| (round-off of a C entered isotropic)
@@ -62,7 +66,8 @@ using CatalogProvider = std::function<const materials::Catalog&()>;
 
 /// Reads one `[[phases]]` table. Throws lamina::Error naming the file and key
 /// on a missing, unknown or invalid value (E <= 0, nu outside (-1, 0.5), C not
-/// symmetric positive definite, J <= 0, J given for a non-gvbo phase...).
+/// symmetric positive definite, J <= 0, J given for a non-gvbo phase,
+/// density or elastic constants given for a void phase...).
 Phase readPhase(const core::TableReader& t, const CatalogProvider& catalog);
 
 } // namespace lamina::micro
