@@ -17,7 +17,8 @@
 # itself (no extrapolation: its error is that of one staircase run).
 #
 # Cost: CG iterations summed over the six load cases times voxels, in units
-# of one 32^3 solve at contrast 10 (78 iterations in all): one iteration
+# of one iteration of each load case at 32^3 (a whole 32^3 solve at
+# contrast 10, 78 iterations in all, is 13): one iteration
 # costs the same per voxel for both kinds, and unlike wall time on a shared
 # machine it does not depend on the load. Wall time (the whole process) is
 # printed too. Then per contrast the cost each kind needs to be within 2 %,
@@ -100,7 +101,7 @@ done
 import json, math, sys
 
 runs = [json.loads(line) for line in open(sys.argv[1])]
-UNIT = 78 * 32 ** 3  # one 32^3 solve at contrast 10 (iterations x voxels)
+UNIT = 6 * 32 ** 3  # one CG iteration of each of the six load cases at 32^3
 TARGETS = (("C44", 0.02), ("C44", 0.01), ("C44", 0.005), ("C11", 0.001))
 
 
@@ -135,7 +136,7 @@ for r in runs:
     if r["contrast"] not in contrasts:
         contrasts.append(r["contrast"])
 table = []
-print("\nper run: error = (C - C*) / C*; cost = iterations x voxels / one 32^3 solve at contrast 10")
+print("\nper run: error = (C - C*) / C*; cost = iterations x voxels / (6 x 32^3)")
 print("%-8s %-9s %4s %7s %8s %8s %9s %9s %9s" % (
     "contrast", "kind", "N", "f_N", "CG sum", "cost", "wall s", "C11 err", "C44 err"))
 for c in contrasts:
