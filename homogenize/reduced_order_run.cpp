@@ -163,8 +163,7 @@ std::string reducedOrderSummary(const std::string& name, const ReducedOrderResul
   os << "), density " << core::formatShort(m.density) << " kg/m^3\n";
   os << "solves " << c.solves << ", CG iterations " << c.iterations << ", largest residual "
      << core::formatShort(c.max_residual, 3) << ", wall " << core::formatShort(c.wall_s, 3)
-     << " s, peak memory "
-     << core::formatBytes(c.peak_bytes) << " (influence spectra "
+     << " s, peak memory " << core::formatBytes(c.peak_bytes) << " (influence spectra "
      << core::formatBytes(8 * c.influence_doubles) << ")\n";
   os << "state doubles per point " << stateDoublesPerPoint(m)
      << (result.dispersion ? "" : "; no micro-inertia: the cell has no size in metres ([cell] size)")

@@ -338,8 +338,7 @@ void driveEntry(Args a, const std::filesystem::path& library) {
     mat::writeDispersionCsv(a.nonlinear_dispersion, dispersion);
   std::cerr << "drove '" << a.name << "' (" << mat::toString(law->kind()) << ") along "
             << a.path_name << " at " << lamina::core::formatShort(a.drive.rate) << " /s to "
-            << lamina::core::formatShort(a.drive.to) << ": "
-            << rows.size() << " rows in " << a.out
+            << lamina::core::formatShort(a.drive.to) << ": " << rows.size() << " rows in " << a.out
             << (a.nonlinear_dispersion.empty() ? "" : ", D_nonlin in " + a.nonlinear_dispersion)
             << "\n";
 }

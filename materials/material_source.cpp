@@ -91,10 +91,9 @@ std::string MaterialSource::unknownMessage(const std::string& name, const std::s
     return names.empty() ? std::string("no entries") : "it has " + core::joinNames(names);
   };
   const std::string library_path = core::shellWord(lib.path().string());
-  std::string text = "unknown material '" + name + "': not in library " + lib.path().string() +
-                     " (" +
-                     (std::filesystem::exists(lib.path()) ? holds(lib.names()) : "no such file") +
-                     ")";
+  std::string text =
+      "unknown material '" + name + "': not in library " + lib.path().string() + " (" +
+      (std::filesystem::exists(lib.path()) ? holds(lib.names()) : "no such file") + ")";
   text += cat ? " nor in catalog " + catalog_path_.string() + " (" + holds(cat->names()) + ")"
               : " (no catalog at " + catalog_path_.string() + ")";
   if (!make.empty())

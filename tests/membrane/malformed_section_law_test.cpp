@@ -179,9 +179,10 @@ TEST(MalformedSectionLaw, AnUnknownMaterialNamesTheCommandThatMakesIt) {
   std::string error = errorWithEmptyLibrary("material = \"steel-pu-laminate\"\n"
                                             "material_from = \"../cells/laminate.toml\"\n",
                                             lib);
-  expectHas(error, {"test.toml", "section[0].material", "steel-pu-laminate", "not in library " + lib,
-                    "catalog", "make it with: homogenize " + cell +
-                                   " --name steel-pu-laminate --library " + lib});
+  expectHas(error,
+            {"test.toml", "section[0].material", "steel-pu-laminate", "not in library " + lib,
+             "catalog",
+             "make it with: homogenize " + cell + " --name steel-pu-laminate --library " + lib});
   // without material_from: the generic command, and where to look
   error = errorWithEmptyLibrary("material = \"steel-pu-laminate\"\n", lib);
   expectHas(error, {"section[0].material", "not in library " + lib,

@@ -100,7 +100,8 @@ TEST(TextOutput, MembraneRunPrintsAtMostSixDigits) {
 TEST(TextOutput, MaterialsShowUsesOneStiffnessUnit) {
   ASSERT_TRUE(have("materials"));
   const fs::path dir = freshTestDir("lamina_text_output");
-  const std::string materials = bin("materials") + " --library '" + (dir / "lib.toml").string() + "'";
+  const std::string materials =
+      bin("materials") + " --library '" + (dir / "lib.toml").string() + "'";
   ASSERT_EQ(run(materials + " add glass --from-catalog e-glass").code, 0);
   const Result r = run(materials + " show glass");
   ASSERT_EQ(r.code, 0) << r.output;
@@ -137,8 +138,8 @@ TEST(TextOutput, HomogenizeNamesTheLibraryAndTheRealIterations) {
   EXPECT_NE(r.output.find("CG iterations per load case:" + counts), std::string::npos)
       << counts << " not in " << r.output;
   EXPECT_NE(r.output.find("load case 6/6: "), std::string::npos) << r.output;
-  const Result text = run(bin("homogenize") + " '" + cell + "' --name t --resolution 8 --library '" +
-                          lib.string() + "'");
+  const Result text = run(bin("homogenize") + " '" + cell +
+                          "' --name t --resolution 8 --library '" + lib.string() + "'");
   ASSERT_EQ(text.code, 0) << text.output;
   EXPECT_NE(text.output.find("added 't' to " + lib.string()), std::string::npos) << text.output;
   EXPECT_EQ(longNumbers(without(text.output, dir.string())), std::vector<std::string>{})
@@ -153,9 +154,9 @@ TEST(TextOutput, AMissingEntryNamesTheCommandThatMakesIt) {
   ASSERT_TRUE(have("membrane"));
   const fs::path dir = freshTestDir("lamina_text_output");
   const fs::path lib = dir / "empty.toml";
-  const Result r = run(bin("membrane") + " run '" +
-                       (kCases / "membrane/laminate-pulse.toml").string() + "' --library '" +
-                       lib.string() + "' --out '" + (dir / "out").string() + "'");
+  const Result r =
+      run(bin("membrane") + " run '" + (kCases / "membrane/laminate-pulse.toml").string() +
+          "' --library '" + lib.string() + "' --out '" + (dir / "out").string() + "'");
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_NE(r.output.find("steel-pu-laminate"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("not in library " + lib.string()), std::string::npos) << r.output;
