@@ -1,6 +1,9 @@
 #include "core/format.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
+#include <cstring>
 
 namespace lamina::core {
 
@@ -13,9 +16,9 @@ std::string formatExact(double x) {
   return s;
 }
 
-std::string formatShort(double x, int digits) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+std::string formatShort(double x, int digits, int width) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%*.*g", width, digits, x);
   return buf;
 }
 
@@ -43,6 +46,19 @@ std::string xmlEscape(const std::string& text) {
     }
   }
   return out;
+}
+
+std::string shellWord(const std::string& word) {
+  const auto plain = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) ||
+           (c != '\0' && std::strchr("-_./+:=,@%", c) != nullptr);
+  };
+  if (!word.empty() && std::all_of(word.begin(), word.end(), plain))
+    return word;
+  std::string out = "'";
+  for (char c : word)
+    out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
 }
 
 std::string joinNames(const std::vector<std::string>& names) {

@@ -13,6 +13,7 @@
 #include "core/atomic_file.hpp"
 #include "core/enum_names.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/names.hpp"
 #include "core/resources.hpp"
 #include "homogenize/distribution.hpp"
@@ -40,6 +41,8 @@
 
 namespace {
 
+using lamina::core::formatShort;
+
 void printDispersion(const lamina::homogenize::EntryResult& e) {
   if (!e.dispersion) {
     std::printf("no micro-inertia: the cell has no size in metres ([cell] size)\n");
@@ -47,44 +50,35 @@ void printDispersion(const lamina::homogenize::EntryResult& e) {
   }
   const auto& d = *e.dispersion;
   std::printf("dispersion zeta^2 D_lin (kg/m, lamina order; eqs. 38-39):\n");
-  for (int i = 0; i < 6; ++i) {
-    std::printf("  ");
-    for (int j = 0; j < 6; ++j)
-      std::printf(" %12.5g", d.D(i, j));
-    std::printf("\n");
-  }
-  std::printf("eq. 39 least-squares residual per load case");
+  std::printf("%s", lamina::core::formatMatrix6(d.D, 1.0, 5, 12, "  ").c_str());
+  std::string line = "eq. 39 least-squares residual per load case";
   for (double r : d.residual)
-    std::printf(" %.2g", r);
-  std::printf("\ncharacteristic length sqrt(zeta^2 D_II / rho) (m):");
+    line += " " + formatShort(r, 2);
+  line += "\ncharacteristic length sqrt(zeta^2 D_II / rho) (m):";
   for (int i = 0; i < 6; ++i)
-    std::printf(" %.3g", std::sqrt(std::max(0.0, d.D(i, i)) / e.result.density));
-  std::printf("\n");
+    line += " " + formatShort(std::sqrt(std::max(0.0, d.D(i, i)) / e.result.density), 3);
+  std::printf("%s\n", line.c_str());
 }
 
 void printHuman(const lamina::homogenize::EntryResult& e, const lamina::micro::UnitCell& cell,
                 const std::string& library) {
   const std::string& name = e.name;
   const lamina::homogenize::Result& r = e.result;
-  std::printf("%s: %zu voxels (%d x %d x %d), density %.6g kg/m^3\n", name.c_str(), r.voxels,
-              cell.n[0], cell.n[1], cell.n[2], r.density);
+  std::printf("%s: %zu voxels (%d x %d x %d), density %s kg/m^3\n", name.c_str(), r.voxels,
+              cell.n[0], cell.n[1], cell.n[2], formatShort(r.density).c_str());
   std::printf("C (GPa, lamina order xx yy zz xy yz xz, engineering shear):\n");
-  for (int i = 0; i < 6; ++i) {
-    std::printf("  ");
-    for (int j = 0; j < 6; ++j)
-      std::printf(" %12.6g", r.C(i, j) * 1e-9);
-    std::printf("\n");
-  }
-  std::printf("load cases: iterations");
+  std::printf("%s", lamina::core::formatMatrix6(r.C, 1e-9, 6, 12, "  ").c_str());
+  std::string line = "load cases: CG iterations";
   for (int it : r.iterations())
-    std::printf(" %d", it);
-  std::printf(", final residuals");
+    line += " " + std::to_string(it);
+  line += ", final residuals";
   for (const auto& c : r.cases)
-    std::printf(" %.2g", c.residual);
-  std::printf("\n");
-  std::printf("asymmetry before symmetrizing %.3g, symmetry %s (tol %.1g), wall %.2f s\n",
-              r.asymmetry, lamina::materials::toString(r.symmetry.cls).c_str(), r.symmetry_tol,
-              r.wall_s);
+    line += " " + formatShort(c.residual, 2);
+  std::printf("%s\n", line.c_str());
+  std::printf("asymmetry before symmetrizing %s, symmetry %s (tol %s), wall %s s\n",
+              formatShort(r.asymmetry, 3).c_str(),
+              lamina::materials::toString(r.symmetry.cls).c_str(),
+              formatShort(r.symmetry_tol, 1).c_str(), formatShort(r.wall_s, 3).c_str());
   printDispersion(e);
   std::printf("added '%s' to %s\n", name.c_str(), library.c_str());
 }
@@ -484,7 +478,7 @@ void runReducedOrder(const Cli& cli, const CliNames& names, const lamina::micro:
   const homogenize::ReducedOrderResult r = homogenize::addReducedOrderEntry(
       spec, cell, cli.name, reducedOrderOptions(cli, names), lib, cli.overwrite);
   if (cli.json) {
-    std::cout << homogenize::reducedOrderJson(cli.name, r).dump() << std::endl;
+    std::cout << homogenize::reducedOrderJson(cli.name, r, lib.path()).dump() << std::endl;
     return;
   }
   std::printf("%s", homogenize::reducedOrderSummary(cli.name, r).c_str());
@@ -512,7 +506,7 @@ void runLinear(const Cli& cli, const lamina::micro::CellSpec& spec,
       spec, cell, cli.name, opt, lib, cli.overwrite,
       [&](const homogenize::EntryResult& e) {
         if (cli.json)
-          std::cout << homogenize::toJson(e).dump() << std::endl;
+          std::cout << homogenize::toJson(e, lib.path()).dump() << std::endl;
         else
           printHuman(e, cell, lib.path().string());
       },

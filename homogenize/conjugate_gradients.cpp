@@ -1,6 +1,7 @@
 #include "homogenize/conjugate_gradients.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -53,7 +54,7 @@ CgResult conjugateGradients(CgProblem& problem, const CgControl& control,
     const double pw = problem.applyToDirection();
     const double alpha = rz / pw;
     if (!(pw > 0) || !std::isfinite(pw) || !std::isfinite(alpha))
-      throw DivergenceError("conjugate gradients broke down (p^T A p = " + std::to_string(pw) +
+      throw DivergenceError("conjugate gradients broke down (p^T A p = " + core::formatShort(pw) +
                             "): NaN/Inf or " + problem.indefiniteCause());
     const double rz_new = problem.update(alpha, rz, control.rz_stop);
     if (!std::isfinite(rz_new))

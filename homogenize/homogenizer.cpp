@@ -1,6 +1,7 @@
 #include "homogenize/homogenizer.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "homogenize/cell_operator.hpp"
@@ -17,7 +18,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <sstream>
 #include <type_traits>
 
 namespace lamina::homogenize {
@@ -142,14 +142,15 @@ void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, cons
     std::array<double, 6> E{0, 0, 0, 0, 0, 0}, sigma{};
     E[static_cast<std::size_t>(k)] = 1.0;
     const double energy = C0.matrix()(k, k); // E^T C0 E for a unit E_k
+    const std::string load_case = "load case " + std::to_string(k + 1) + "/6";
+    // the line follows the CG iterations (redrawn at most every 0.1 s on a
+    // terminal), and each case ends with its own count
     auto monitor = [&](int it, double r) {
       if (monitor_)
         monitor_(k, it, r);
-      else {
-        std::ostringstream os;
-        os << "load case " << k + 1 << "/6, iteration " << it << ", residual " << r;
-        progress.update(k, os.str());
-      }
+      else
+        progress.update(k, load_case + ": CG iteration " + std::to_string(it) + ", residual " +
+                               core::formatShort(r, 3));
     };
     try {
       V* xk = x.empty() ? nullptr : x[energy_form ? static_cast<std::size_t>(k) : 0].data();
@@ -159,6 +160,11 @@ void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, cons
     } catch (const Error& e) {
       throw Error("load case " + std::to_string(k + 1) + ": " + e.message());
     }
+    const LoadCaseResult& solved = res.cases[static_cast<std::size_t>(k)];
+    if (!monitor_)
+      progress.update(k + 1, load_case + ": " + std::to_string(solved.iterations) +
+                                 (solved.iterations == 1 ? " CG iteration" : " CG iterations") +
+                                 ", residual " + core::formatShort(solved.residual, 3));
     for (int a = 0; a < 6; ++a)
       C(a, k) = sigma[static_cast<std::size_t>(a)];
     if (energy_form) { // C_jk = <sigma_k>_j - x_j^T r_k / N for the cases j <= k
@@ -183,7 +189,10 @@ void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, cons
       }
     }
   }
-  progress.finish();
+  std::string counts;
+  for (int it : res.iterations())
+    counts += " " + std::to_string(it);
+  progress.finish("CG iterations per load case:" + counts);
 }
 
 Result Homogenizer::run() {

@@ -252,10 +252,15 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
   return out;
 }
 
-nlohmann::json toJson(const EntryResult& e) {
+std::string libraryJsonPath(const std::filesystem::path& library) {
+  return std::filesystem::absolute(library).lexically_normal().string();
+}
+
+nlohmann::json toJson(const EntryResult& e, const std::filesystem::path& library) {
   const Result& r = e.result;
   nlohmann::json j;
   j["name"] = e.name;
+  j["library"] = libraryJsonPath(library);
   j["C"] = materials::matrixToJson(r.C.matrix());
   j["density"] = r.density;
   j["iterations"] = r.iterations();

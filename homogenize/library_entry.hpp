@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,12 +74,17 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
                       bool overwrite, const std::function<void(const EntryResult&)>& report = {},
                       const Distribution* dist = nullptr);
 
-/// The `--json` summary of an entry: name, C (6x6, Pa, lamina order),
+/// @return @p library as the `--json` outputs name it ("library"): the
+/// absolute path, normalized, of the file that received the entry
+std::string libraryJsonPath(const std::filesystem::path& library);
+
+/// The `--json` summary of an entry: name, library (the absolute path of
+/// @p library, the file that received it), C (6x6, Pa, lamina order),
 /// density, iterations (6), residual, voxels, volume_fraction (all
 /// inclusions), phase_fractions, asymmetry, symmetry, J, wall_s; with
 /// micro-inertia also dispersion (6x6, kg/m), cell_size (m) and
 /// dispersion_residuals (eq. 39 least squares, per load case).
-nlohmann::json toJson(const EntryResult& e);
+nlohmann::json toJson(const EntryResult& e, const std::filesystem::path& library);
 
 /// @return the current UTC time as ISO 8601 (provenance "time")
 std::string utcNow();

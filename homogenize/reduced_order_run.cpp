@@ -3,6 +3,7 @@
 #include "materials/reduced_order_law.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/resources.hpp"
 #include "homogenize/library_entry.hpp"
 #include "materials/export.hpp"
@@ -128,10 +129,12 @@ ReducedOrderResult addReducedOrderEntry(const micro::CellSpec& spec, const micro
   return result;
 }
 
-nlohmann::json reducedOrderJson(const std::string& name, const ReducedOrderResult& result) {
+nlohmann::json reducedOrderJson(const std::string& name, const ReducedOrderResult& result,
+                                const std::filesystem::path& library) {
   const materials::ReducedOrderModel& m = result.model;
   nlohmann::json j;
   j["name"] = name;
+  j["library"] = libraryJsonPath(library);
   j["partitions"] = m.partitions();
   j["partition_phase"] = m.partition_phase;
   j["fractions"] = m.fraction;
@@ -162,10 +165,10 @@ std::string reducedOrderSummary(const std::string& name, const ReducedOrderResul
   const std::vector<int> count = m.partitionsPerPhase();
   for (std::size_t p = 0; p < m.phases.size(); ++p)
     os << (p ? ", " : "") << m.phases[p].name << " " << count[p];
-  os << "), density " << m.density << " kg/m^3\n";
+  os << "), density " << core::formatShort(m.density) << " kg/m^3\n";
   os << "solves " << c.solves << ", CG iterations " << c.iterations << ", largest residual "
-     << c.max_residual << ", wall " << c.wall_s << " s, peak memory "
-     << core::formatBytes(c.peak_bytes) << " (influence spectra "
+     << core::formatShort(c.max_residual, 3) << ", wall " << core::formatShort(c.wall_s, 3)
+     << " s, peak memory " << core::formatBytes(c.peak_bytes) << " (influence spectra "
      << core::formatBytes(8 * c.influence_doubles) << ")\n";
   os << "state doubles per point " << stateDoublesPerPoint(m)
      << (result.dispersion ? "" : "; no micro-inertia: the cell has no size in metres ([cell] size)")

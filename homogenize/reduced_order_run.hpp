@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -56,11 +57,13 @@ ReducedOrderResult addReducedOrderEntry(const micro::CellSpec& spec, const micro
                                         const ReducedOrderOptions& options,
                                         materials::Library& library, bool overwrite);
 
-/// The `--json` summary: name, partitions, partition_phase, fractions,
+/// The `--json` summary: name, library (libraryJsonPath of @p library, the
+/// file that received the entry), partitions, partition_phase, fractions,
 /// partitions_per_phase, C (Pa), density, dispersion (with a size), solves,
 /// iterations, residual, wall_s, peak_memory_bytes, influence_doubles,
 /// state_doubles_per_point.
-nlohmann::json reducedOrderJson(const std::string& name, const ReducedOrderResult& result);
+nlohmann::json reducedOrderJson(const std::string& name, const ReducedOrderResult& result,
+                                const std::filesystem::path& library);
 
 /// The human summary (several lines): partitions per phase, solves,
 /// iterations, seconds, memory, state doubles per point.

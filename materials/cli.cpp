@@ -35,10 +35,30 @@ std::string nowIso() {
   return buf;
 }
 
+/// @return a provenance value as a person reads it: numbers with 6
+/// significant digits (the library file keeps every digit), arrays element
+/// by element, anything else as TOML writes it
+std::string provenanceText(const toml::node& v) {
+  if (const auto* x = v.as_floating_point())
+    return lamina::core::formatShort(x->get());
+  if (const auto* a = v.as_array()) {
+    std::string out;
+    for (const toml::node& item : *a)
+      out += (out.empty() ? "" : ", ") + provenanceText(item);
+    return "[" + out + "]";
+  }
+  std::ostringstream os;
+  v.visit([&os](const auto& x) { os << x; });
+  return os.str();
+}
+
+/// `show`'s screen. Every stiffness and modulus is in GPa (said on each of
+/// their lines), densities in kg/m^3, lengths in m.
 void printHuman(const mat::Material& m) {
   const mat::Symmetry s = mat::classify(m.C);
   const mat::EngineeringConstants e = m.C.engineering();
   auto g = [](double x) { return lamina::core::formatShort(x, 6); };
+  auto gpa = [](double x) { return lamina::core::formatShort(x * 1e-9, 6); };
   std::cout << m.name << "  (" << m.kind << ")\n"
             << "  density   " << g(m.density) << " kg/m^3\n";
   if (m.thickness)
@@ -47,32 +67,17 @@ void printHuman(const mat::Material& m) {
             << (s.axis >= 0 ? std::string(" (axis ") + "xyz"[s.axis] + ")" : "")
             << ", anisotropy index A^U = " << g(mat::anisotropyIndex(m.C)) << "\n"
             << "  C (GPa, lamina order xx yy zz xy yz xz):\n";
-  for (int i = 0; i < 6; ++i) {
-    std::cout << "   ";
-    for (int j = 0; j < 6; ++j) {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, " %11.5g", m.C(i, j) / 1e9);
-      std::cout << buf;
-    }
-    std::cout << "\n";
-  }
-  std::cout << "  E1 " << g(e.E1) << "  E2 " << g(e.E2) << "  E3 " << g(e.E3) << " Pa\n"
-            << "  G12 " << g(e.G12) << "  G23 " << g(e.G23) << "  G13 " << g(e.G13) << " Pa\n"
+  std::cout << lamina::core::formatMatrix6(m.C, 1e-9, 5, 11, "   ");
+  std::cout << "  E1 " << gpa(e.E1) << "  E2 " << gpa(e.E2) << "  E3 " << gpa(e.E3) << " GPa\n"
+            << "  G12 " << gpa(e.G12) << "  G23 " << gpa(e.G23) << "  G13 " << gpa(e.G13)
+            << " GPa\n"
             << "  nu12 " << g(e.nu12) << "  nu13 " << g(e.nu13) << "  nu23 " << g(e.nu23) << "\n";
   if (m.cell_size)
     std::cout << "  cell size " << g((*m.cell_size)[0]) << " x " << g((*m.cell_size)[1]) << " x "
               << g((*m.cell_size)[2]) << " m\n";
   if (m.dispersion) {
     std::cout << "  dispersion zeta^2 D (kg/m, lamina order; micro-inertia, eq. 35):\n";
-    for (int i = 0; i < 6; ++i) {
-      std::cout << "   ";
-      for (int j = 0; j < 6; ++j) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, " %11.4g", (*m.dispersion)(i, j));
-        std::cout << buf;
-      }
-      std::cout << "\n";
-    }
+    std::cout << lamina::core::formatMatrix6(*m.dispersion, 1.0, 4, 11, "   ");
     // omega^2 = c^2 k^2 / (1 + l^2 k^2) for a wave straining component I alone
     const auto l = mat::dispersionLengths(m);
     std::cout << "  characteristic length sqrt(zeta^2 D_II / rho) (m): xx " << g(l[0]) << "  yy "
@@ -89,9 +94,7 @@ void printHuman(const mat::Material& m) {
   if (!m.provenance.empty()) {
     std::cout << "  provenance:\n";
     for (const auto& [k, v] : m.provenance) {
-      std::ostringstream os;
-      v.visit([&os](const auto& x) { os << x; });
-      std::string text = os.str();
+      std::string text = provenanceText(v);
       if (text.size() > 100)
         text = text.substr(0, 97) + "...";
       std::cout << "    " << k.str() << " = " << text << "\n";
@@ -254,7 +257,7 @@ mat::Material newEntry(const Args& a) {
     throw lamina::Error("give --from-catalog KEY or --constants C11,...,C66", {"add", 0, ""});
   }
   m.name = a.name;
-  m.provenance.insert("tool", "materials add");
+  m.provenance.insert("program", "materials add");
   m.provenance.insert("version", LAMINA_VERSION);
   m.provenance.insert("time", nowIso());
   return m;
@@ -268,7 +271,7 @@ void addLayup(const Args& a, const std::filesystem::path& library) {
   mat::MaterialSource source(library.string(), a.catalog);
   mat::Material m =
       mat::makeLayup(a.name, stack, [&](const std::string& n) { return source.get(n); });
-  m.provenance.insert("tool", "materials layup");
+  m.provenance.insert("program", "materials layup");
   m.provenance.insert("version", LAMINA_VERSION);
   m.provenance.insert("time", nowIso());
   mat::Library(library).add(m, a.overwrite);
@@ -334,8 +337,8 @@ void driveEntry(Args a, const std::filesystem::path& library) {
   if (!a.nonlinear_dispersion.empty())
     mat::writeDispersionCsv(a.nonlinear_dispersion, dispersion);
   std::cerr << "drove '" << a.name << "' (" << mat::toString(law->kind()) << ") along "
-            << a.path_name << " at " << a.drive.rate << " /s to " << a.drive.to << ": "
-            << rows.size() << " rows in " << a.out
+            << a.path_name << " at " << lamina::core::formatShort(a.drive.rate) << " /s to "
+            << lamina::core::formatShort(a.drive.to) << ": " << rows.size() << " rows in " << a.out
             << (a.nonlinear_dispersion.empty() ? "" : ", D_nonlin in " + a.nonlinear_dispersion)
             << "\n";
 }

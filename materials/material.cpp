@@ -1,6 +1,7 @@
 #include "materials/material.hpp"
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/names.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -16,10 +17,10 @@ void validate(const Material& m) {
   const ErrorContext ctx{"", 0, m.name};
   m.C.validate(m.name);
   if (!(m.density > 0) || !std::isfinite(m.density))
-    throw Error("density must be positive and finite (kg/m^3), got " + std::to_string(m.density),
+    throw Error("density must be positive and finite (kg/m^3), got " + core::formatShort(m.density),
                 ctx);
   if (m.thickness && (!(*m.thickness > 0) || !std::isfinite(*m.thickness)))
-    throw Error("thickness must be positive (m), got " + std::to_string(*m.thickness), ctx);
+    throw Error("thickness must be positive (m), got " + core::formatShort(*m.thickness), ctx);
   for (const Ply& p : m.plies)
     if (!(p.thickness > 0))
       throw Error("ply thickness must be positive (m)", ctx);

@@ -3,6 +3,8 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 
+#include <filesystem>
+
 namespace lamina::materials {
 
 MaterialSource::MaterialSource(const std::string& library, const std::string& catalog)
@@ -74,10 +76,31 @@ Material MaterialSource::get(const std::string& name) {
       m.thickness = entry.nominal_thickness;
     return m;
   }
-  throw Error("unknown material '" + name + "': library " + lib.path().string() + " has [" +
-                  core::joinNames(lib.names()) + "]" +
-                  (cat ? "; catalog has [" + core::joinNames(cat->names()) + "]" : ""),
-              {"", 0, name});
+  throw Error(unknownMessage(name), {"", 0, name});
+}
+
+bool MaterialSource::contains(const std::string& name) {
+  const Catalog* cat = catalog();
+  return library().contains(name) || (cat && cat->contains(name));
+}
+
+std::string MaterialSource::unknownMessage(const std::string& name, const std::string& make) {
+  const Library& lib = library();
+  const Catalog* cat = catalog();
+  const auto holds = [](const std::vector<std::string>& names) {
+    return names.empty() ? std::string("no entries") : "it has " + core::joinNames(names);
+  };
+  const std::string library_path = core::shellWord(lib.path().string());
+  std::string text =
+      "unknown material '" + name + "': not in library " + lib.path().string() + " (" +
+      (std::filesystem::exists(lib.path()) ? holds(lib.names()) : "no such file") + ")";
+  text += cat ? " nor in catalog " + catalog_path_.string() + " (" + holds(cat->names()) + ")"
+              : " (no catalog at " + catalog_path_.string() + ")";
+  if (!make.empty())
+    return text + "; make it with: " + make;
+  return text + "; `homogenize CELL.toml --name " + core::shellWord(name) + " --library " +
+         library_path + "` makes a cell's entry, `materials --library " + library_path +
+         " list` lists the library";
 }
 
 } // namespace lamina::materials

@@ -26,7 +26,8 @@ ReducedOrderModel readReducedOrderEntry(const Library& library, const Material& 
 /// returns the library entry of that name if there is one (the library
 /// wins), else the catalog entry as a Material carrying the catalog's
 /// nominal thickness (if any) as its thickness; otherwise it throws
-/// lamina::Error naming the library path and listing what both hold.
+/// lamina::Error with unknownMessage(): where it looked and how an entry is
+/// made.
 class MaterialSource {
 public:
   /// @param library library file (Library::resolvePath is applied to it)
@@ -41,6 +42,14 @@ public:
   /// library entry is linear elastic with its C (LawKind::Anisotropic), a
   /// catalog entry has its own law (GVBO included); unknown names as get()
   LawPtr law(const std::string& name, const ReducedOrderOptions& options = {});
+  /// @return whether the library or the catalog has @p name
+  bool contains(const std::string& name);
+  /// @return the message for a @p name that neither holds: the library's
+  /// path and entries, the catalog's path and entries, and @p make (the
+  /// command that makes the entry, when the caller knows it) or else the
+  /// generic hint: `homogenize CELL.toml --name NAME --library L` makes a
+  /// cell's entry, `materials --library L list` lists the library
+  std::string unknownMessage(const std::string& name, const std::string& make = "");
   /// @return the library (loaded now if not yet)
   const Library& library();
 

@@ -118,7 +118,7 @@ void Stiffness::validate(const std::string& name) const {
     throw Error("stiffness has NaN or infinite entries", ctx);
   if (asymmetry() > 1e-10)
     throw Error("stiffness is not symmetric (max |C - C^T| / max |C| = " +
-                    std::to_string(asymmetry()) + ")",
+                    core::formatShort(asymmetry(), 3) + ")",
                 ctx);
   // Fast path (a homogenization validates one stiffness per composite voxel,
   // tens of thousands): cholesky(). Otherwise the eigenvalues decide.

@@ -206,24 +206,35 @@ nlohmann::json ConvergenceStudy::toJson() const {
 }
 
 std::string ConvergenceStudy::toTable() const {
+  // One table, every column of a fixed width and left-aligned, so that a
+  // value starts where its header does; the last row holds the rates.
+  static constexpr std::size_t kWidths[] = {7, 7, 11, 11, 11, 11, 11, 11, 11};
   std::ostringstream os;
-  os << "level  nx     dt            |u_k - u_k-1|: L1       L2           Linf"
-        "         |v_k - v_k-1|: L1       L2           Linf\n";
-  for (size_t k = 0; k < nx.size(); ++k) {
-    os << k << "      " << nx[k] << "\t" << core::formatShort(dt[k], 4);
-    if (k > 0) {
-      for (double x : du[k - 1])
-        os << "\t" << core::formatShort(x, 4);
-      os << "\t";
-      for (double x : dv[k - 1])
-        os << "\t" << core::formatShort(x, 4);
+  const auto row = [&os](const std::vector<std::string>& cells) {
+    std::string line;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      line += cells[c];
+      if (c + 1 < cells.size()) // at least one space between columns
+        line += std::string(cells[c].size() < kWidths[c] ? kWidths[c] - cells[c].size() : 1, ' ');
     }
-    os << "\n";
+    os << line << "\n";
+  };
+  const auto num = [](double x) { return core::formatShort(x, 4); };
+  os << "du, dv: norms of u_k - u_k-1 and v_k - v_k-1 at the level-0 samples; "
+        "rate: the observed order\n";
+  row({"level", "nx", "dt (s)", "du L1", "du L2", "du Linf", "dv L1", "dv L2", "dv Linf"});
+  for (std::size_t k = 0; k < nx.size(); ++k) {
+    std::vector<std::string> cells = {std::to_string(k), std::to_string(nx[k]), num(dt[k])};
+    for (const auto* d : {&du, &dv})
+      for (int j = 0; j < 3; ++j)
+        cells.push_back(k > 0 ? num((*d)[k - 1][static_cast<std::size_t>(j)]) : "-");
+    row(cells);
   }
-  os << "observed rate         displacement: L1 " << core::formatShort(rate_u[0], 4) << "  L2 "
-     << core::formatShort(rate_u[1], 4) << "  Linf " << core::formatShort(rate_u[2], 4) << "\n";
-  os << "                      velocity:     L1 " << core::formatShort(rate_v[0], 4) << "  L2 "
-     << core::formatShort(rate_v[1], 4) << "  Linf " << core::formatShort(rate_v[2], 4) << "\n";
+  std::vector<std::string> rates = {"rate", "", ""};
+  for (const auto* r : {&rate_u, &rate_v})
+    for (double x : *r)
+      rates.push_back(num(x));
+  row(rates);
   return os.str();
 }
 

@@ -32,7 +32,10 @@ struct ConvergenceStudy {
   double wall_s = 0;                     ///< total time (s)
   /// @return the study as JSON
   nlohmann::json toJson() const;
-  /// @return the study as a text table like the paper's Table 3
+  /// @return the study as a text table like the paper's Table 3: a legend,
+  /// a header, one row per level (nx, dt, its differences to the level
+  /// before) and the rates last, in fixed-width left-aligned columns (4
+  /// significant digits)
   std::string toTable() const;
 };
 

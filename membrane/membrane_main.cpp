@@ -1,6 +1,7 @@
 // The `membrane` program: thin CLI over lamina::membrane (run, converge, blast).
 #include "core/atomic_file.hpp"
 #include "core/error.hpp"
+#include "core/format.hpp"
 #include "core/interrupt.hpp"
 #include "membrane/converge.hpp"
 #include "membrane/io/case_file.hpp"
@@ -128,8 +129,9 @@ void runCommand(const Options& o) {
     std::cout << summary.dump(2) << "\n";
   else
     std::cerr << "membrane: " << model.name << ": " << summary["steps"] << " steps, max |w| "
-              << summary["max_abs_w"] << " m, energy balance "
-              << summary["energy"]["max_abs_balance"] << " J; results in " << out_dir << "\n";
+              << core::formatShort(summary["max_abs_w"].get<double>()) << " m, energy balance "
+              << core::formatShort(summary["energy"]["max_abs_balance"].get<double>())
+              << " J; results in " << out_dir << "\n";
 }
 
 /// `membrane converge`: runs the convergence study, prints its rates.

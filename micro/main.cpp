@@ -96,15 +96,15 @@ int main(int argc, char** argv) {
     std::printf("cell %s: %d x %d x %d voxels, %zu inclusions\n", cell_path.c_str(), n[0], n[1],
                 n[2], cell.inclusions.size());
     for (std::size_t g = 0; g < spec.groups.size(); ++g)
-      std::printf("  %s (%s): target fraction %s, analytic %.6f\n", spec.groups[g].key.c_str(),
+      std::printf("  %s (%s): target fraction %s, analytic %s\n", spec.groups[g].key.c_str(),
                   toString(spec.groups[g].prototype.shape).c_str(),
                   std::isnan(cell.target_fraction[g])
                       ? "-"
                       : lamina::core::formatShort(cell.target_fraction[g]).c_str(),
-                  cell.analytic_fraction[g]);
+                  lamina::core::formatShort(cell.analytic_fraction[g]).c_str());
     for (std::size_t p = 0; p < spec.phases.size(); ++p)
-      std::printf("  phase %zu %-16s voxel fraction %.6f\n", p, spec.phases[p].name.c_str(),
-                  cell.voxel_fraction[p]);
+      std::printf("  phase %zu %-16s voxel fraction %s\n", p, spec.phases[p].name.c_str(),
+                  lamina::core::formatShort(cell.voxel_fraction[p]).c_str());
     std::printf("wrote %s; an image cell reads it back with the [cell] keys\n%s", out.c_str(),
                 keys.c_str());
   } catch (const lamina::Error& e) {

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <set>
@@ -54,13 +55,37 @@ std::string sectionText(const core::TableReader& r) {
                          : "the section of every region without one of its own";
 }
 
+/// `material_from = "CELL.toml"` (relative to the case file) names the cell
+/// file `homogenize` makes the section's material from; read when the
+/// material is in neither the library nor the catalog.
+/// @return the command that makes material @p name into the library of
+/// @p source (the cell file must exist)
+std::string makeCommand(const core::TableReader& r, const std::string& name,
+                        materials::MaterialSource& source) {
+  std::filesystem::path cell = r.getString("material_from");
+  if (cell.is_relative())
+    cell = std::filesystem::path(r.file()).parent_path() / cell;
+  cell = cell.lexically_normal();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(cell, ec))
+    r.fail("material_from", "the cell file " + cell.string() + " (that makes material '" + name +
+                                "'; relative to the case file) does not exist");
+  return "homogenize " + core::shellWord(cell.string()) + " --name " + core::shellWord(name) +
+         " --library " + core::shellWord(source.library().path().string());
+}
+
 /// `material = "NAME"`: the law of the library or catalog entry
 /// (MaterialSource::law: a reduced-order entry is its ReducedOrderLaw, a
-/// catalog entry its own law), its density and dispersion.
+/// catalog entry its own law), its density and dispersion. A name neither
+/// holds is an error saying where it looked and how the entry is made
+/// (with `material_from`, the very command).
 /// @return the entry's thickness, if it has one (the section's default)
 std::optional<double> readNamedMaterial(const core::TableReader& r,
                                         materials::MaterialSource& source, Section& s) {
   const std::string name = r.getString("material");
+  if (r.has("material_from") && !blamed(r, "material", [&] { return source.contains(name); }))
+    r.fail("material", source.unknownMessage(name, makeCommand(r, name, source)));
+  (void)r.getString("material_from", ""); // read: only the message above uses it
   const materials::Material m = blamed(r, "material", [&] { return source.get(name); });
   s.law = blamed(r, "material", [&] { return source.law(name); });
   s.D = s.law->elasticStiffness(1.0).matrix(); // a linear law: the entry's C, bit for bit
@@ -237,6 +262,9 @@ Section readSection(const core::TableReader& r, materials::MaterialSource& sourc
   if (by_name + layup + inline_law != 1)
     r.failHere("give exactly one of material, law (with its keys and density), E (with nu and "
                "density), C (with density), plies");
+  if (r.has("material_from") && !by_name)
+    r.fail("material_from", "names the cell file that makes the section's `material`; it goes "
+                            "with material = \"NAME\"");
   Section s;
   std::optional<double> default_thickness;
   if (by_name)

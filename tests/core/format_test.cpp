@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -67,4 +68,40 @@ TEST(FormatExact, RandomBitPatternsRoundTrip) {
 TEST(FormatShort, UsesRequestedDigits) {
   EXPECT_EQ(core::formatShort(3.14159265, 3), "3.14");
   EXPECT_EQ(core::formatShort(1.5e-7), "1.5e-07");
+  // the round-off tail of a sum is not shown: 0.0008 as a run summed it
+  // (0.0008000000000000014, 17 digits) prints as 0.0008
+  EXPECT_EQ(core::formatShort(0.0008000000000000014), "0.0008");
+  EXPECT_EQ(core::formatShort(1.234567e-7), "1.23457e-07"); // 6 digits, rounded
+  EXPECT_EQ(core::formatShort(1.234567e-7, 4), "1.235e-07");
+  EXPECT_EQ(core::formatShort(123456789.0), "1.23457e+08");
+  EXPECT_EQ(core::formatShort(-2.5), "-2.5");
+}
+
+// A width right-aligns the number (tables); a longer number is not cut.
+TEST(FormatShort, WidthRightAligns) {
+  EXPECT_EQ(core::formatShort(0.25, 4, 8), "    0.25");
+  EXPECT_EQ(core::formatShort(-1.234567e-7, 4, 5), "-1.235e-07");
+}
+
+// A word of a suggested command: paths pass unchanged, anything a shell
+// would split or expand is single-quoted, a quote inside closed and escaped.
+TEST(ShellWord, QuotesOnlyWhatAShellWouldSplit) {
+  EXPECT_EQ(core::shellWord("/home/a/lib-1.toml"), "/home/a/lib-1.toml");
+  EXPECT_EQ(core::shellWord("my lib.toml"), "'my lib.toml'");
+  EXPECT_EQ(core::shellWord("$HOME"), "'$HOME'");
+  EXPECT_EQ(core::shellWord("it's"), "'it'\\''s'");
+  EXPECT_EQ(core::shellWord(""), "''");
+}
+
+// A 6x6 matrix as text: one row per line, each value right-aligned in its
+// column, scaled (Pa -> GPa), a negative zero shown as 0.
+TEST(FormatMatrix6, RowsOfAlignedScaledValues) {
+  struct Diagonal {
+    double operator()(int i, int j) const { return i == j ? 1.5e9 * (i + 1) : -0.0; }
+  };
+  const std::string text = core::formatMatrix6(Diagonal{}, 1e-9, 4, 6, " ");
+  EXPECT_EQ(text.substr(0, text.find('\n') + 1), "     1.5      0      0      0      0      0\n");
+  EXPECT_EQ(text.substr(text.rfind('\n', text.size() - 2) + 1),
+            "       0      0      0      0      0      9\n");
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 6);
 }

@@ -129,7 +129,7 @@ inline materials::Material reducedOrderEntry(const std::string& name,
   m.C = materials::Stiffness(model.C);
   m.density = model.density;
   m.phases = model.phases;
-  m.provenance.insert("tool", "test");
+  m.provenance.insert("program", "test");
   return m;
 }
 

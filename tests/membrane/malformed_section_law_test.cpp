@@ -151,3 +151,55 @@ TEST(MalformedSectionLaw, InlineLawWithoutDensityIsNamed) {
   expectHas(errorOf(test::sectionSheet("law = \"isotropic\"\nE = 1e9\nnu = 0.3\n")),
             {"law.toml", "section[0].density", "missing"});
 }
+
+namespace {
+
+/// The error of building @p section's sheet with an empty library in a
+/// temporary folder ("" when it builds); @p library receives its path.
+std::string errorWithEmptyLibrary(const std::string& section, std::string& library) {
+  const lamina::test::TempDir dir;
+  library = (dir / "library.toml").string();
+  try {
+    test::modelWithLibrary(test::sectionSheet(section, "linear"), library);
+  } catch (const lamina::Error& err) {
+    return err.what();
+  }
+  return "";
+}
+
+} // namespace
+
+// A material in neither the library nor the catalog: the error names the
+// library file searched and how to make the entry; with `material_from`
+// (the cell file, relative to the case file: the helper's case file is
+// cases/membrane/test.toml) the very homogenize command, into that library.
+TEST(MalformedSectionLaw, AnUnknownMaterialNamesTheCommandThatMakesIt) {
+  std::string lib;
+  const std::string cell = std::string(LAMINA_SOURCE_DIR) + "/cases/cells/laminate.toml";
+  std::string error = errorWithEmptyLibrary("material = \"steel-pu-laminate\"\n"
+                                            "material_from = \"../cells/laminate.toml\"\n",
+                                            lib);
+  expectHas(error,
+            {"test.toml", "section[0].material", "steel-pu-laminate", "not in library " + lib,
+             "catalog",
+             "make it with: homogenize " + cell + " --name steel-pu-laminate --library " + lib});
+  // without material_from: the generic command, and where to look
+  error = errorWithEmptyLibrary("material = \"steel-pu-laminate\"\n", lib);
+  expectHas(error, {"section[0].material", "not in library " + lib,
+                    "homogenize CELL.toml --name steel-pu-laminate --library " + lib,
+                    "materials --library " + lib + " list"});
+  // a material the catalog has builds: material_from is read only when needed
+  EXPECT_EQ(errorWithEmptyLibrary("material = \"vinyl-fabric\"\n"
+                                  "material_from = \"../cells/no-such-cell.toml\"\n",
+                                  lib),
+            "");
+  // a cell file that does not exist, or material_from without a material
+  expectHas(errorWithEmptyLibrary("material = \"steel-pu-laminate\"\n"
+                                  "material_from = \"../cells/no-such-cell.toml\"\n",
+                                  lib),
+            {"section[0].material_from", "no-such-cell.toml", "does not exist"});
+  expectHas(errorWithEmptyLibrary("E = 1e9\nnu = 0.3\ndensity = 1e3\n"
+                                  "material_from = \"../cells/laminate.toml\"\n",
+                                  lib),
+            {"section[0].material_from", "material = \"NAME\""});
+}
