@@ -146,7 +146,7 @@ TEST_F(CommandLine, SharedOptionsGoBeforeOrAfterTheSubcommand) {
   const Result b2 = run(bin("membrane") + blast + " --json");
   EXPECT_EQ(b1.code, 0) << b1.output;
   EXPECT_EQ(b1.output, b2.output);
-  EXPECT_NO_THROW((void)nlohmann::json::parse(b1.output)) << b1.output;
+  EXPECT_TRUE(nlohmann::json::accept(b1.output)) << b1.output;
   // an option before the subcommand that the subcommand does not take
   const Result refused = run(bin("materials") + " --json --library " + lib + " remove t1");
   EXPECT_EQ(refused.code, 2) << refused.output;
