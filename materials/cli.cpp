@@ -213,15 +213,19 @@ Commands addCommands(CLI::App& app, Args& a) {
   c.remove = app.add_subcommand("remove", "remove an entry");
   c.remove->add_option("NAME", a.name, "entry name")->required();
   c.drive = addDriveCommand(app, a);
+  // the library and the catalog are the program's two files: every
+  // subcommand takes both (the catalog is read by list --catalog-entries,
+  // add, layup and drive), so a script may name them once, first
   using lamina::core::Shared;
+  const Shared files = Shared::Library | Shared::Catalog;
   lamina::core::addSharedOptions(app, a.shared,
-                                 {{c.list, Shared::Library | Shared::Catalog | Shared::Json},
-                                  {c.show, Shared::Library | Shared::Json},
-                                  {c.add, Shared::Library | Shared::Catalog},
-                                  {c.layup, Shared::Library | Shared::Catalog},
-                                  {c.export_card, Shared::Library},
-                                  {c.remove, Shared::Library},
-                                  {c.drive, Shared::Library | Shared::Catalog}});
+                                 {{c.list, files | Shared::Json},
+                                  {c.show, files | Shared::Json},
+                                  {c.add, files},
+                                  {c.layup, files},
+                                  {c.export_card, files},
+                                  {c.remove, files},
+                                  {c.drive, files}});
   return c;
 }
 
