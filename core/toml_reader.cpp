@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
 
 namespace lamina::core {
 
@@ -41,6 +42,33 @@ std::optional<double> numberOf(const toml::node& n) {
 
 int lineOfNode(const toml::node& n) {
   return static_cast<int>(n.source().begin.line);
+}
+
+/// The source name of a value a --set override put in a document: the
+/// assignment itself, "--set KEY=VALUE", so an error about it names it.
+constexpr std::string_view kOverrideSource = "--set ";
+
+/// Where @p n (a value of @p file, or nullptr for a missing key of @p table)
+/// comes from, for an error about @p key: the --set assignment that gave
+/// the value, else the file and the line.
+ErrorContext contextOf(const toml::node* n, const toml::node& table, const std::string& file,
+                       std::string key) {
+  const toml::node& at = n ? *n : table;
+  if (const auto& source = at.source().path; source && source->rfind(kOverrideSource, 0) == 0)
+    return {*source, 0, std::move(key)};
+  return {file, lineOfNode(at), std::move(key)};
+}
+
+/// @return @p text parsed as the value of one key, its source the
+/// assignment @p source (a bare word that is not TOML: a string)
+toml::table overrideValue(const std::string& text, const std::string& source) {
+  try {
+    return toml::parse("v = " + text, source);
+  } catch (const toml::parse_error&) {
+    std::ostringstream quoted;
+    quoted << toml::table{{"v", text}};
+    return toml::parse(quoted.str(), source);
+  }
 }
 
 /// Depth of TOML nesting along a scan: every open bracket or brace adds one
@@ -195,12 +223,8 @@ void applyOverride(toml::table& doc, const std::string& assignment) {
   const std::string key = assignment.substr(0, eq);
   const std::string value = assignment.substr(eq + 1);
   checkTomlLimits(assignment, "--set " + key);
-  toml::table parsed;
-  try {
-    parsed = toml::parse("v = " + value);
-  } catch (const toml::parse_error&) {
-    parsed = toml::table{{"v", value}};
-  }
+  const std::string source = std::string(kOverrideSource) + assignment;
+  toml::table parsed = overrideValue(value, source);
   toml::table* t = &doc;
   std::size_t start = 0;
   while (true) {
@@ -230,12 +254,12 @@ void applyOverride(toml::table& doc, const std::string& assignment) {
       continue;
     }
     if (dot == std::string::npos) {
-      t->insert_or_assign(part, *parsed.get("v"));
+      t->insert_or_assign(part, std::move(*parsed.get("v"))); // moved: keeps its source
       return;
     }
     toml::node* next = t->get(part);
-    if (!next) {
-      t->insert(part, toml::table{});
+    if (!next) { // a new table, from the override too
+      t->insert(part, std::move(*overrideValue("{}", source).get("v")));
       next = t->get(part);
     }
     if (!next->is_table())
@@ -253,18 +277,12 @@ std::string TableReader::path(std::string_view key) const {
   return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
 }
 
-int TableReader::lineOf(std::string_view key) const {
-  if (const toml::node* n = table_->get(key))
-    return lineOfNode(*n);
-  return lineOfNode(*table_);
-}
-
 void TableReader::fail(std::string_view key, const std::string& message) const {
-  throw Error(message, {file_, lineOf(key), path(key)});
+  throw Error(message, contextOf(table_->get(key), *table_, file_, path(key)));
 }
 
 void TableReader::failHere(const std::string& message) const {
-  throw Error(message, {file_, lineOfNode(*table_), prefix_});
+  throw Error(message, contextOf(table_, *table_, file_, prefix_));
 }
 
 bool TableReader::has(std::string_view key) const {
@@ -457,7 +475,7 @@ void TableReader::checkUnread(const toml::table& t, const std::string& prefix) c
     if (record_->whole.count(p))
       continue;
     if (!record_->read.count(p))
-      throw Error("unknown key (not part of this file's format)", {file_, lineOfNode(v), p});
+      throw Error("unknown key (not part of this file's format)", contextOf(&v, t, file_, p));
     if (const toml::table* sub = v.as_table()) {
       checkUnread(*sub, p);
     } else if (const toml::array* arr = v.as_array()) {

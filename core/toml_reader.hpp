@@ -55,7 +55,9 @@ toml::table parseTomlString(std::string_view text, const std::string& source_nam
 /// parsed as a TOML value (number, bool, string in quotes, array); a bare word
 /// that is not valid TOML is taken as a string. Intermediate tables are
 /// created; "name[i].key" addresses element i of an array of tables
-/// (`[[name]]`). Throws lamina::Error on a malformed override.
+/// (`[[name]]`). Throws lamina::Error on a malformed override. The values
+/// it sets carry the assignment as their source: a later error about one
+/// names "--set KEY=VALUE" instead of the file.
 void applyOverride(toml::table& doc, const std::string& assignment);
 
 /// Strict, recording view of one TOML table. Copies share the record of
@@ -175,7 +177,6 @@ private:
   double finite(std::string_view key, double v) const;
   void mark(std::string_view key) const;
   void checkUnread(const toml::table& t, const std::string& prefix) const;
-  int lineOf(std::string_view key) const;
 
   const toml::table* table_;
   std::string file_;

@@ -1,6 +1,6 @@
 /// @file cli.cpp
 /// @brief `homogenize CELL.toml --name NAME [--library PATH] [--json]
-/// [--threads N] [--tol T] [--resolution N]`: effective C and density of a
+/// [--threads N] [--tol T] [--resolution N] [--set KEY=VALUE]`: effective C and density of a
 /// unit cell into the materials library. With `--path P --rate R --to S`:
 /// the nonlinear cell under that strain-rate history (nonlinear_run.hpp).
 /// With `--reduced-order [--partitions K] [--partition-seed S]`: the cell's
@@ -11,6 +11,7 @@
 #include "homogenize/cli.hpp"
 
 #include "core/atomic_file.hpp"
+#include "core/command_line.hpp"
 #include "core/enum_names.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -109,9 +110,10 @@ int measureFlag(FftwPlan plan) {
 
 /// The command line, parsed: the choices as enums.
 struct Cli {
-  std::string cell_path, name, library, catalog, out;
-  bool json = false, overwrite = false, quiet = false;
-  int threads = 0, resolution = 0;
+  std::string cell_path, name, out;
+  lamina::core::SharedOptions shared; ///< --library, --catalog, --set, --threads, --json, --quiet
+  bool overwrite = false;
+  int resolution = 0;
   double tol = 1e-5, eta = 0.1;
   FftwPlan plan = FftwPlan::Auto;
   lamina::homogenize::Estimate estimate = lamina::homogenize::Estimate::Energy;
@@ -152,21 +154,24 @@ void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names);
 
 /// Declares every option of the program on @p app, into @p cli and @p names.
 void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
+  lamina::core::showDefaults(app);
   app.add_option("cell", cli.cell_path, "cell file (TOML)")->required();
-  app.add_option(
-      "--name", cli.name,
-      "library entry name (with a J sweep: NAME-J<J>; with --tangent-rates: NAME-R<rate>)");
-  app.add_option("--library", cli.library, "library file (default: $LAMINA_LIBRARY, XDG data dir)");
-  app.add_flag("--json", cli.json, "print a JSON summary on stdout (one object per entry)");
-  app.add_option("--threads", cli.threads, "OpenMP and FFTW threads")
-      ->check(CLI::NonNegativeNumber);
+  app.add_option("--name", cli.name,
+                 "library entry name; required to add entries (linear, --tangent-rates, "
+                 "--reduced-order), not for a --path run alone (with a J sweep: NAME-J<J>; "
+                 "with --tangent-rates: NAME-R<rate>)");
+  using lamina::core::Shared;
+  lamina::core::addSharedOptions(app, cli.shared,
+                                 Shared::Library | Shared::Catalog | Shared::Set |
+                                     Shared::Threads | Shared::Json | Shared::Quiet);
   names.tol = app.add_option("--tol", cli.tol,
-                             "relative residual per load case (default 1e-5; with "
-                             "--reduced-order 1e-8)")
+                             "relative residual per load case (with --reduced-order the "
+                             "default is 1e-8)")
                   ->check(CLI::PositiveNumber);
-  app.add_option("--resolution", cli.resolution, "override the resolution: N^3 voxels")
-      ->check(CLI::Range(2, 4096));
-  app.add_option("--catalog", cli.catalog, "catalog file (default: $LAMINA_CATALOG or built-in)");
+  app.add_option("--resolution", cli.resolution,
+                 "override the cell's resolution: N^3 voxels (default: the cell's)")
+      ->check(CLI::Range(2, 4096))
+      ->default_str("");
   app.add_flag("--overwrite", cli.overwrite, "replace an existing entry of the same name");
   app.add_option("--fftw-plan", names.plan,
                  "FFTW planning: estimate, measure (wisdom cached in ~/.cache/lamina), "
@@ -180,7 +185,6 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
                  "precision of the FFTs: auto (single when tol >= 1e-6), single, double; in "
                  "single from tol 1e-4 up the operator and the CG vectors are float too")
       ->check(CLI::IsMember(kPrecisions.names()));
-  app.add_flag("--quiet", cli.quiet, "no progress line");
   // nonlinear: the cell under a strain-rate history (docs/homogenize-nonlinear.md)
   app.add_option("--path", names.path,
                  "nonlinear run along this strain path (one of the names listed; with "
@@ -189,29 +193,33 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
       ->check(CLI::IsMember(lamina::materials::kDrivePathNames.names()));
   names.rate = app.add_option("--rate", cli.path.rate,
                               "nonlinear: driven strain rate (1/s, 1e-12 to 1e12; required "
-                              "with --path ... --out)"); // range: materials::checkRate
+                              "with --path ... --out)") // range: materials::checkRate
+                  ->default_str("");
   names.to = app.add_option("--to", cli.path.to,
                             "nonlinear: final driven strain (required with --path ... --out; "
                             "confined: below 1)")
-                 ->check(CLI::PositiveNumber);
-  app.add_option("--steps", cli.path.steps, "nonlinear: load steps per leg (default 100)")
+                 ->check(CLI::PositiveNumber)
+                 ->default_str("");
+  app.add_option("--steps", cli.path.steps, "nonlinear: load steps per leg")
       ->check(CLI::Range(1, 10000000));
   app.add_flag("--unload", cli.path.unload, "nonlinear: back to zero strain at the same rate");
   app.add_option("--out", cli.out, "nonlinear: history CSV (also OUT-phases.csv, OUT-fields.h5)");
   app.add_option("--fields", cli.field_steps, "nonlinear: steps whose fields are written (XDMF)")
-      ->delimiter(',');
-  app.add_option("--eta", cli.eta, "nonlinear: CG forcing term per Newton step (default 0.1)")
+      ->delimiter(',')
+      ->default_str("");
+  app.add_option("--eta", cli.eta, "nonlinear: CG forcing term per Newton step")
       ->check(CLI::Range(1e-12, 0.9));
   app.add_option("--tangent-rates", cli.tangent.rates,
                  "rates (1/s, 1e-12 to 1e12, inf allowed) of effective tangent entries "
                  "NAME-R<rate>, added all or none")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->default_str("");
   app.add_option("--tangent-strain", cli.tangent.strain,
-                 "driven strain of the state of the tangent entries (default 0)")
+                 "driven strain of the state of the tangent entries")
       ->check(CLI::NonNegativeNumber);
   app.add_option(
          "--tangent-increment", cli.tangent.increment,
-         "strain increment a tangent is for, in (0, 1]: dt = increment / rate (default 1e-3)")
+         "strain increment a tangent is for, in (0, 1]: dt = increment / rate")
       ->check(CLI::PositiveNumber);
   addReducedOrderOptions(app, cli, names);
 }
@@ -225,10 +233,10 @@ void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_option("--partitions", cli.partitions,
                  "reduced-order: K partitions per phase by k-means of the voxels' strain "
                  "concentration tensors (default: one partition per phase)")
-      ->check(CLI::Range(1, 1 << 20));
+      ->check(CLI::Range(1, 1 << 20))
+      ->default_str("");
   names.seed = app.add_option("--partition-seed", cli.partition_seed,
-                              "reduced-order: seed of the k-means++ seeding (default " +
-                                  std::to_string(lamina::homogenize::kDefaultPartitionSeed) + ")")
+                              "reduced-order: seed of the k-means++ seeding")
                    ->check(CLI::NonNegativeNumber);
 }
 
@@ -302,9 +310,9 @@ lamina::homogenize::ReducedOrderOptions reducedOrderOptions(const Cli& cli,
   lamina::homogenize::ReducedOrderOptions opt;
   if (names.tol->count() > 0)
     opt.tol = cli.tol;
-  opt.threads = cli.threads;
+  opt.threads = cli.shared.threads;
   opt.measure = measureFlag(cli.plan);
-  opt.quiet = cli.quiet || cli.json;
+  opt.quiet = cli.shared.quiet || cli.shared.json;
   if (cli.partitions > 0) {
     opt.partitions.method = lamina::homogenize::PartitionMethod::KMeans;
     opt.partitions.per_phase = cli.partitions;
@@ -321,7 +329,7 @@ void checkReducedOrder(const Cli& cli, const lamina::micro::CellSpec& spec,
   if (cli.name.empty())
     throw Error("--reduced-order needs --name NAME", {"", 0, "--name"});
   LAMINA_CHECK(mpi.ranks() == 1, "reduced-order builds are serial (no mpirun)");
-  const materials::Library lib(materials::Library::resolvePath(cli.library));
+  const materials::Library lib(materials::Library::resolvePath(cli.shared.library));
   lib.checkNewNames({cli.name}, cli.overwrite, "--name");
   const std::size_t voxels = static_cast<std::size_t>(n[0]) * static_cast<std::size_t>(n[1]) *
                              static_cast<std::size_t>(n[2]);
@@ -343,9 +351,9 @@ void checkNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec) {
     materials::checkRate(cli.path.rate, "--rate");
     materials::checkFinalStrain(cli.path.path, cli.path.to, "--to");
     std::vector<std::filesystem::path> inputs{
-        cli.cell_path, materials::Library::resolvePath(cli.library),
-        cli.catalog.empty() ? materials::Catalog::defaultPath()
-                            : std::filesystem::path(cli.catalog)};
+        cli.cell_path, materials::Library::resolvePath(cli.shared.library),
+        cli.shared.catalog.empty() ? materials::Catalog::defaultPath()
+                            : std::filesystem::path(cli.shared.catalog)};
     if (spec.image)
       inputs.push_back(spec.image->path);
     for (const auto& f : homogenize::pathOutputs(cli.out, !cli.field_steps.empty()))
@@ -356,7 +364,7 @@ void checkNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec) {
       throw Error("--tangent-rates needs --name NAME", {"", 0, "--name"});
     homogenize::TangentSpec tangent = cli.tangent;
     tangent.path = cli.path;
-    const materials::Library lib(materials::Library::resolvePath(cli.library));
+    const materials::Library lib(materials::Library::resolvePath(cli.shared.library));
     homogenize::checkTangentSpec(cli.name, tangent, lib, cli.overwrite);
   }
 }
@@ -421,7 +429,7 @@ void runPath(const Cli& cli, const lamina::micro::CellSpec& spec,
   const auto t0 = std::chrono::steady_clock::now();
   const auto steps = homogenize::runPath(
       spec, cell, cli.path, nl, cli.out, cli.field_steps, [&](const homogenize::StepResult& r) {
-        if (!cli.quiet)
+        if (!cli.shared.quiet)
           std::fprintf(stderr,
                        "step %d t %.4g s: E %.4g %.4g %.4g %.4g %.4g %.4g, Sigma %.4g %.4g "
                        "%.4g %.4g %.4g %.4g MPa, newton %d krylov %d (%.2f s)\n",
@@ -451,7 +459,7 @@ void runNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec,
   homogenize::NonlinearOptions nl;
   nl.tol = cli.tol;
   nl.eta = cli.eta;
-  nl.threads = cli.threads;
+  nl.threads = cli.shared.threads;
   nl.measure = measureFlag(cli.plan);
   if (cli.path_given && !cli.out.empty())
     runPath(cli, spec, cell, nl);
@@ -463,7 +471,7 @@ void runNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec,
     throw Error("--tangent-rates needs --name NAME");
   homogenize::TangentSpec tangent = cli.tangent;
   tangent.path = cli.path;
-  materials::Library lib(materials::Library::resolvePath(cli.library));
+  materials::Library lib(materials::Library::resolvePath(cli.shared.library));
   homogenize::addTangentEntries(
       spec, cell, cli.name, tangent, nl, lib, cli.overwrite, [&](const materials::Material& m) {
         std::printf("added '%s' to %s\n", m.name.c_str(), lib.path().string().c_str());
@@ -474,10 +482,10 @@ void runNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec,
 void runReducedOrder(const Cli& cli, const CliNames& names, const lamina::micro::CellSpec& spec,
                      const lamina::micro::UnitCell& cell) {
   using namespace lamina;
-  materials::Library lib(materials::Library::resolvePath(cli.library));
+  materials::Library lib(materials::Library::resolvePath(cli.shared.library));
   const homogenize::ReducedOrderResult r = homogenize::addReducedOrderEntry(
       spec, cell, cli.name, reducedOrderOptions(cli, names), lib, cli.overwrite);
-  if (cli.json) {
+  if (cli.shared.json) {
     std::cout << homogenize::reducedOrderJson(cli.name, r, lib.path()).dump() << std::endl;
     return;
   }
@@ -491,12 +499,12 @@ void runLinear(const Cli& cli, const lamina::micro::CellSpec& spec,
   using namespace lamina;
   if (cli.name.empty())
     throw Error("--name NAME is required");
-  materials::Library lib(materials::Library::resolvePath(cli.library));
+  materials::Library lib(materials::Library::resolvePath(cli.shared.library));
   homogenize::Options opt;
   opt.tol = cli.tol;
-  opt.threads = cli.threads;
+  opt.threads = cli.shared.threads;
   opt.measure = measureFlag(cli.plan);
-  opt.quiet = cli.quiet || mpi.rank() != 0;
+  opt.quiet = cli.shared.quiet || mpi.rank() != 0;
   opt.estimate = cli.estimate;
   if (cli.precision != PrecisionChoice::Auto)
     opt.precision = cli.precision == PrecisionChoice::Single ? homogenize::Precision::Single
@@ -505,7 +513,7 @@ void runLinear(const Cli& cli, const lamina::micro::CellSpec& spec,
   homogenize::homogenizeIntoLibrary(
       spec, cell, cli.name, opt, lib, cli.overwrite,
       [&](const homogenize::EntryResult& e) {
-        if (cli.json)
+        if (cli.shared.json)
           std::cout << homogenize::toJson(e, lib.path()).dump() << std::endl;
         else
           printHuman(e, cell, lib.path().string());
@@ -518,8 +526,9 @@ void run(Cli& cli, const CliNames& names, lamina::homogenize::MpiSession& mpi) {
   using namespace lamina;
   if (!cli.name.empty()) // a nonlinear run without a library entry has none
     core::checkName(cli.name, "entry name", {"", 0, "--name"});
-  core::checkThreads(cli.threads, "--threads");
-  const micro::CellSpec spec = micro::readCell(cli.cell_path, micro::lazyCatalog(cli.catalog));
+  core::checkThreads(cli.shared.threads, "--threads");
+  const micro::CellSpec spec = micro::readCell(
+      cli.cell_path, micro::lazyCatalog(cli.shared.catalog), cli.shared.overrides);
   std::array<int, 3> n = spec.resolution;
   if (cli.resolution > 0)
     n = {cli.resolution, cli.resolution, cli.resolution};
@@ -557,7 +566,7 @@ int runProgram(int argc, char** argv, MpiSession& mpi, UnexpectedErrors unexpect
     // every rank parses the same arguments: one prints
     if (mpi.rank() != 0)
       return e.get_exit_code() == 0 ? 0 : lamina::kExitUsage;
-    return app.exit(e) == 0 ? 0 : lamina::kExitUsage;
+    return lamina::core::reportUsageError(app, e, "homogenize");
   }
   try {
     run(cli, names, mpi);

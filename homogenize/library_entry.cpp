@@ -51,6 +51,12 @@ toml::table cellProvenance(const std::string& program, const micro::CellSpec& sp
   p.insert("time", utcNow());
   p.insert("cell_file", spec.file);
   p.insert("cell_text", spec.text);
+  if (!spec.overrides.empty()) { // --set KEY=VALUE over cell_text
+    toml::array overrides;
+    for (const auto& o : spec.overrides)
+      overrides.push_back(o);
+    p.insert("cell_overrides", std::move(overrides));
+  }
   p.insert("resolution", toml::array{cell.n[0], cell.n[1], cell.n[2]});
   return p;
 }

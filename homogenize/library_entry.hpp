@@ -90,7 +90,8 @@ nlohmann::json toJson(const EntryResult& e, const std::filesystem::path& library
 std::string utcNow();
 
 /// The provenance every homogenized entry (linear or nonlinear) starts with:
-/// program (@p program), version, time (UTC), cell_file, cell_text and
+/// program (@p program), version, time (UTC), cell_file, cell_text,
+/// cell_overrides (the --set KEY=VALUE over cell_text; only when given) and
 /// resolution of @p cell.
 toml::table cellProvenance(const std::string& program, const micro::CellSpec& spec,
                            const micro::UnitCell& cell);

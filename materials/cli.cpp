@@ -4,6 +4,7 @@
 #include "materials/cli.hpp"
 
 #include "core/atomic_file.hpp"
+#include "core/command_line.hpp"
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "materials/catalog.hpp"
@@ -125,11 +126,11 @@ std::array<double, 21> parseConstants(const std::string& text) {
 
 /// The command line, parsed (every subcommand's options).
 struct Args {
-  std::string library, catalog; ///< --library, --catalog
-  std::string name;             ///< NAME of show, add, layup, export, remove, drive
+  lamina::core::SharedOptions shared; ///< --library, --catalog, --json
+  std::string name;                   ///< NAME of show, add, layup, export, remove, drive
   std::string format = "json", from_catalog, constants;
   std::string path_name = "uniaxial-strain", out, kinematics = "finite";
-  bool list_catalog = false, json = false, overwrite = false;
+  bool list_catalog = false, overwrite = false;
   double density = 0;
   std::vector<std::string> plies;
   mat::DriveOptions drive;
@@ -139,7 +140,8 @@ struct Args {
 
   /// @return the catalog file: --catalog, else the default
   std::filesystem::path catalogFile() const {
-    return catalog.empty() ? mat::Catalog::defaultPath() : std::filesystem::path(catalog);
+    return shared.catalog.empty() ? mat::Catalog::defaultPath()
+                                  : std::filesystem::path(shared.catalog);
   }
 };
 
@@ -155,51 +157,49 @@ CLI::App* addDriveCommand(CLI::App& app, Args& a) {
   cmd->add_option("NAME", a.name, "library entry or catalog material")->required();
   cmd->add_option("--path", a.path_name, "strain path (one of the names listed)")
       ->check(CLI::IsMember(mat::kDrivePathNames.names()));
-  cmd->add_option("--rate", a.drive.rate, "driven strain rate (1/s, 1e-12 to 1e12; required)")
-      ->required(); // range checked by checkRate (the same rule as homogenize)
-  cmd->add_option("--to", a.drive.to,
-                  "final driven strain (required; confined: compression, below 1)")
+  cmd->add_option("--rate", a.drive.rate, "driven strain rate (1/s, 1e-12 to 1e12)")
+      ->required() // range checked by checkRate (the same rule as homogenize)
+      ->default_str("");
+  cmd->add_option("--to", a.drive.to, "final driven strain (confined: compression, below 1)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->default_str("");
   cmd->add_flag("--unload", a.drive.unload, "drive back to zero strain at the same rate");
-  cmd->add_option("--steps", a.drive.steps, "time steps per leg (default 200)")
+  cmd->add_option("--steps", a.drive.steps, "time steps per leg")
       ->check(CLI::Range(1, 100000000));
   cmd->add_option("--kinematics", a.kinematics,
-                  "finite (rotation-free frame, J = det F; default) | small")
+                  "finite (rotation-free frame, J = det F) | small")
       ->check(CLI::IsMember(mat::kKinematicsNames.names()));
   cmd->add_option("--out", a.out, "CSV file to write")->required();
   cmd->add_option("--nonlinear-dispersion", a.nonlinear_dispersion,
                   "reduced-order entries: CSV of D_nonlin (eq. 40, kg/m) along the history");
   cmd->add_option("--newton-iterations", a.newton_iterations,
                   "reduced-order entries: Newton cap per step (default 50)")
-      ->check(CLI::Range(1, 10000));
+      ->check(CLI::Range(1, 10000))
+      ->default_str("");
   cmd->add_option("--newton-tolerance", a.newton_tolerance,
                   "reduced-order entries: Newton tolerance, relative strain (default 1e-10)")
-      ->check(CLI::Range(1e-16, 1e-2));
-  cmd->add_option("--library", a.library, "library file (as before the subcommand)");
+      ->check(CLI::Range(1e-16, 1e-2))
+      ->default_str("");
   return cmd;
 }
 
 /// Declares every subcommand and option on @p app, into @p a.
 Commands addCommands(CLI::App& app, Args& a) {
-  app.require_subcommand(1);
-  app.add_option(
-      "--library", a.library,
-      "library file (default: $LAMINA_LIBRARY, else ~/.local/share/lamina/library.toml)");
-  app.add_option("--catalog", a.catalog, "catalog file (default: the source tree's)");
+  lamina::core::showDefaults(app);
   Commands c{};
   c.list = app.add_subcommand("list", "list the library entries");
   c.list->add_flag("--catalog-entries", a.list_catalog,
                    "list the catalog's base materials instead");
   c.show = app.add_subcommand("show", "show one entry");
   c.show->add_option("NAME", a.name, "entry name")->required();
-  c.show->add_flag("--json", a.json, "print one JSON object");
   c.add = app.add_subcommand("add", "add an entry from the catalog or from 21 constants");
   c.add->add_option("NAME", a.name, "new entry name")->required();
   auto* from = c.add->add_option("--from-catalog", a.from_catalog, "catalog key");
   auto* constants = c.add->add_option(
       "--constants", a.constants, "C11,C12,...,C66: upper triangle row by row, lamina order, Pa");
-  c.add->add_option("--density", a.density, "kg/m^3 (required with --constants)");
+  c.add->add_option("--density", a.density, "kg/m^3 (required with --constants)")
+      ->default_str("");
   c.add->add_flag("--overwrite", a.overwrite, "replace an existing entry of that name");
   from->excludes(constants);
   c.layup = app.add_subcommand("layup", "store a layup of plies as a new entry");
@@ -216,26 +216,52 @@ Commands addCommands(CLI::App& app, Args& a) {
   c.remove = app.add_subcommand("remove", "remove an entry");
   c.remove->add_option("NAME", a.name, "entry name")->required();
   c.drive = addDriveCommand(app, a);
+  // the library and the catalog are the program's two files: every
+  // subcommand takes both (the catalog is read by list --catalog-entries,
+  // add, layup and drive), so a script may name them once, first
+  using lamina::core::Shared;
+  const Shared files = Shared::Library | Shared::Catalog;
+  lamina::core::addSharedOptions(app, a.shared,
+                                 {{c.list, files | Shared::Json},
+                                  {c.show, files | Shared::Json},
+                                  {c.add, files},
+                                  {c.layup, files},
+                                  {c.export_card, files},
+                                  {c.remove, files},
+                                  {c.drive, files}});
   return c;
 }
 
-/// `list`: the library's entries, or the catalog's materials.
+/// `list`: the library's entries, or the catalog's materials; text, or
+/// one JSON array (--json).
 void listEntries(const Args& a, const std::filesystem::path& library) {
+  nlohmann::json out = nlohmann::json::array();
   if (a.list_catalog) {
     const mat::Catalog cat(a.catalogFile());
-    for (const auto& n : cat.names())
-      std::cout << n << "  " << cat.get(n).description << "\n";
-    return;
+    for (const auto& n : cat.names()) {
+      out.push_back({{"name", n}, {"description", cat.get(n).description}});
+      if (!a.shared.json)
+        std::cout << n << "  " << cat.get(n).description << "\n";
+    }
+  } else {
+    const mat::Library lib(library);
+    for (const auto& n : lib.names()) {
+      const auto& m = lib.get(n);
+      const std::string symmetry = mat::toString(mat::classify(m.C).cls);
+      nlohmann::json entry{{"name", n}, {"kind", m.kind}, {"symmetry", symmetry}};
+      std::string phases;
+      for (const auto& p : m.phases) {
+        entry["phases"].push_back({{"name", p.name}, {"law", mat::toString(p.law.kind)}});
+        phases += (phases.empty() ? "" : ", ") + p.name + " (" + mat::toString(p.law.kind) + ")";
+      }
+      out.push_back(entry);
+      if (!a.shared.json)
+        std::cout << n << "  " << m.kind << "  " << symmetry
+                  << (phases.empty() ? "" : "  phases " + phases) << "\n";
+    }
   }
-  const mat::Library lib(library);
-  for (const auto& n : lib.names()) {
-    const auto& m = lib.get(n);
-    std::cout << n << "  " << m.kind << "  " << mat::toString(mat::classify(m.C).cls);
-    std::string phases;
-    for (const auto& p : m.phases)
-      phases += (phases.empty() ? "" : ", ") + p.name + " (" + mat::toString(p.law.kind) + ")";
-    std::cout << (phases.empty() ? "" : "  phases " + phases) << "\n";
-  }
+  if (a.shared.json)
+    std::cout << out.dump(2) << "\n";
 }
 
 /// `add`: the new entry, from the catalog or from 21 constants.
@@ -268,7 +294,7 @@ void addLayup(const Args& a, const std::filesystem::path& library) {
   std::vector<mat::Ply> stack;
   for (const auto& p : a.plies)
     stack.push_back(mat::parsePly(p));
-  mat::MaterialSource source(library.string(), a.catalog);
+  mat::MaterialSource source(library.string(), a.shared.catalog);
   mat::Material m =
       mat::makeLayup(a.name, stack, [&](const std::string& n) { return source.get(n); });
   m.provenance.insert("program", "materials layup");
@@ -324,7 +350,7 @@ void driveEntry(Args a, const std::filesystem::path& library) {
         fs::weakly_canonical(lamina::core::resolveLinks(a.out)))
       throw lamina::Error("names the same file as --out", {a.out, 0, "--nonlinear-dispersion"});
   }
-  mat::MaterialSource source(library.string(), a.catalog);
+  mat::MaterialSource source(library.string(), a.shared.catalog);
   const mat::LawPtr law = source.law(a.name, newtonOptions(a));
   checkReducedOrderOptions(a, *law);
   std::vector<mat::DispersionRow> dispersion;
@@ -376,7 +402,7 @@ void showEntry(const Args& a, const std::filesystem::path& path) {
   const mat::Library lib(path);
   const mat::Material& m = lib.get(a.name);
   const bool reduced = m.kind == mat::kReducedOrderKind;
-  if (a.json) {
+  if (a.shared.json) {
     nlohmann::json j = mat::materialToJson(m);
     if (reduced)
       showReducedOrder(lib, m, &j);
@@ -390,7 +416,7 @@ void showEntry(const Args& a, const std::filesystem::path& path) {
 
 /// Runs the subcommand of @p c that was given.
 void runCommand(const Commands& c, const Args& a) {
-  const auto path = mat::Library::resolvePath(a.library);
+  const auto path = mat::Library::resolvePath(a.shared.library);
   if (c.list->parsed()) {
     listEntries(a, path);
   } else if (c.show->parsed()) {
@@ -416,18 +442,14 @@ void runCommand(const Commands& c, const Args& a) {
 namespace lamina::materials {
 
 int runProgram(int argc, char** argv, UnexpectedErrors unexpected) {
-  CLI::App app{"lamina materials library: list, show, add, layup, export, remove.\n"
+  CLI::App app{"lamina materials library: list, show, add, layup, export, remove, drive.\n"
                "Stiffness in Pa, lamina order [xx, yy, zz, xy, yz, xz], engineering shear."};
   Args args;
   const Commands commands = addCommands(app, args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) // --help: CLI11 prints the help text
-      return app.exit(e);
-    // One line on stderr (CLI11's default adds a second "Run with --help" line).
-    std::cerr << "materials: error: " << e.what() << " (see --help)\n";
-    return lamina::kExitUsage;
+    return lamina::core::reportUsageError(app, e, "materials");
   }
   try {
     runCommand(commands, args);

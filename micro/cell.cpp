@@ -368,12 +368,16 @@ void readPhases(const core::TableReader& root, const CatalogProvider& catalog, C
 } // namespace
 
 CellSpec readCellString(const std::string& text, const std::string& source,
-                        const CatalogProvider& catalog) {
-  const toml::table doc = core::parseTomlString(text, source);
+                        const CatalogProvider& catalog,
+                        const std::vector<std::string>& overrides) {
+  toml::table doc = core::parseTomlString(text, source);
+  for (const auto& o : overrides)
+    core::applyOverride(doc, o);
   core::TableReader root(doc, source);
   CellSpec cell;
   cell.file = source;
   cell.text = text;
+  cell.overrides = overrides;
   const core::TableReader c = root.table("cell");
   cell.description = c.getString("description", "");
   if (c.has("image"))
@@ -392,8 +396,9 @@ CellSpec readCellString(const std::string& text, const std::string& source,
   return cell;
 }
 
-CellSpec readCell(const std::filesystem::path& path, const CatalogProvider& catalog) {
-  return readCellString(core::readInputFile(path), path.string(), catalog);
+CellSpec readCell(const std::filesystem::path& path, const CatalogProvider& catalog,
+                  const std::vector<std::string>& overrides) {
+  return readCellString(core::readInputFile(path), path.string(), catalog, overrides);
 }
 
 } // namespace lamina::micro

@@ -84,6 +84,7 @@ inline constexpr double kMaxCellEdge = 0.1;
 struct CellSpec {
   std::string file;                               ///< path it was read from
   std::string text;                               ///< the full file text (provenance)
+  std::vector<std::string> overrides; ///< the --set KEY=VALUE applied over text (provenance)
   std::string description;                        ///< optional one-line description
   std::array<int, 3> resolution{32, 32, 32};      ///< voxels along x, y, z
   Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths (m; 1 if not given)
@@ -110,11 +111,15 @@ struct CellSpec {
 /// Reads and validates a cell file. @p catalog is consulted only for phases
 /// with `catalog = "NAME"`. Throws lamina::Error naming the file, line and key
 /// for a malformed file (unknown key, negative radius, unknown phase...).
-CellSpec readCell(const std::filesystem::path& path, const CatalogProvider& catalog);
+/// The `--set KEY=VALUE` @p overrides are applied to the file's keys first
+/// (core::applyOverride); an error about an overridden value names the --set.
+CellSpec readCell(const std::filesystem::path& path, const CatalogProvider& catalog,
+                  const std::vector<std::string>& overrides = {});
 
 /// As readCell, from text; @p source names it in messages.
 CellSpec readCellString(const std::string& text, const std::string& source,
-                        const CatalogProvider& catalog);
+                        const CatalogProvider& catalog,
+                        const std::vector<std::string>& overrides = {});
 
 /// A provider that loads materials::Catalog(materials::Catalog::defaultPath())
 /// (or @p path if non-empty) once, on first use.

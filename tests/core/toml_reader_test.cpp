@@ -104,6 +104,41 @@ TEST(ApplyOverride, SetsNestedKeysWithTypedValues) {
   EXPECT_EQ(doc["solver"]["max_iterations"].value_exact<std::int64_t>(), 50);
 }
 
+// An error about a value a --set gave names the --set, not the file (the
+// file's own values keep their file and line): a bad override is not the
+// case file's fault.
+TEST(ApplyOverride, ErrorsAboutOverriddenValuesNameTheSet) {
+  const auto errorOf = [](const char* text, const std::string& assignment, auto read) {
+    toml::table doc = core::parseTomlString(text, "case.toml");
+    core::applyOverride(doc, assignment);
+    const core::TableReader root(doc, "case.toml");
+    try {
+      read(root);
+    } catch (const lamina::Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(errorOf(kCase, "steps=abc",
+                    [](const core::TableReader& r) { (void)r.getInt("steps"); }),
+            "--set steps=abc: 'steps': expected an integer, got string");
+  EXPECT_EQ(errorOf(kCase, "solver.tolerance=[1]",
+                    [](const core::TableReader& r) {
+                      (void)r.table("solver").getDouble("tolerance");
+                    }),
+            "--set solver.tolerance=[1]: 'solver.tolerance': expected a number, got array");
+  // a key the format does not have, in a table the override made
+  EXPECT_EQ(errorOf("a = 1\n", "extra.key=1",
+                    [](const core::TableReader& r) {
+                      (void)r.getInt("a");
+                      r.finish();
+                    }),
+            "--set extra.key=1: 'extra': unknown key (not part of this file's format)");
+  // the file's own values still name the file and the line
+  EXPECT_EQ(errorOf(kCase, "steps=3", [](const core::TableReader& r) { (void)r.getInt("title"); }),
+            "case.toml:1: 'title': expected an integer, got string");
+}
+
 TEST(ApplyOverride, RejectsMalformedAssignments) {
   toml::table doc = core::parseTomlString(kCase, "case.toml");
   EXPECT_THROW(core::applyOverride(doc, "novalue"), lamina::Error);
