@@ -21,7 +21,7 @@ namespace {
 constexpr const char* kSetHelp =
     "override a key of the case or cell file, e.g. time.dt=1e-7 or cell.resolution=16 "
     "(repeatable; the value is TOML, a bare word a string)";
-constexpr const char* kThreadsHelp = "OpenMP threads (0: automatic)";
+constexpr const char* kThreadsHelp = "threads: OpenMP, and FFTW in homogenize (0: automatic)";
 constexpr const char* kJsonHelp = "print the result as JSON on stdout (for scripts)";
 constexpr const char* kQuietHelp = "no progress line on stderr";
 

@@ -29,6 +29,7 @@
 #include "micro/unit_cell.hpp"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <array>
@@ -474,7 +475,11 @@ void runNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec,
   materials::Library lib(materials::Library::resolvePath(cli.shared.library));
   homogenize::addTangentEntries(
       spec, cell, cli.name, tangent, nl, lib, cli.overwrite, [&](const materials::Material& m) {
-        std::printf("added '%s' to %s\n", m.name.c_str(), lib.path().string().c_str());
+        if (cli.shared.json) // one JSON line per entry, as the linear run's
+          std::cout << nlohmann::json{{"name", m.name}, {"library", lib.path().string()}}.dump()
+                    << std::endl;
+        else
+          std::printf("added '%s' to %s\n", m.name.c_str(), lib.path().string().c_str());
       });
 }
 

@@ -115,7 +115,7 @@ std::string outputFolder(const Options& o) {
   if (std::filesystem::exists(out_dir, ec) && !std::filesystem::is_directory(out_dir, ec))
     throw Error("the output folder exists and is not a directory; refusing to replace it",
                 {out_dir, 0, "--out"});
-  core::checkOutputIsNotInput(out_dir, {o.case_path, o.shared.library}, "--out");
+  core::checkOutputIsNotInput(out_dir, {o.case_path, o.shared.library, o.shared.catalog}, "--out");
   return out_dir;
 }
 
