@@ -5,7 +5,7 @@ set -euo pipefail
 PKGS=(cmake g++ make pkg-config ninja-build
       libeigen3-dev libfftw3-dev libhdf5-dev libgmsh-dev gmsh
       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
-      libsuitesparse-dev time openmpi-bin libopenmpi-dev libfftw3-mpi-dev
+      libsuitesparse-dev libboost-graph-dev time openmpi-bin libopenmpi-dev libfftw3-mpi-dev
       clang libclang-rt-14-dev libomp-dev llvm
       libexpat1-dev zlib1g-dev libtiff-dev libssl-dev
       python3 python3-numpy python3-matplotlib python3-h5py universal-ctags)

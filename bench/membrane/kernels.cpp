@@ -7,7 +7,9 @@
 // fabric model and of the linear model, with their ratios to the SpMVs.
 // Wall times are the best of the repetitions (the machine is shared: the
 // best is the least disturbed), CPU times the mean over all threads.
-// Usage: membrane_kernels N THREADS [STEPS] [all|explicit|law]
+// Usage: membrane_kernels N|MESH THREADS [STEPS] [all|explicit|law]
+//   MESH: a .msh or .geo file instead of N: bench/membrane/bench-gmsh.toml
+//        on that mesh (run.sh makes the unstructured benchmark square)
 //   explicit: only the SpMV floor and the explicit steps (large meshes)
 //   law: the explicit step of bench/membrane/gvbo.toml (N x N polyurea
 //        sheet) with a GVBO section against the same sheet elastic at the
@@ -26,6 +28,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <ctime>
 #include <string>
 #include <vector>
@@ -75,20 +78,27 @@ int lawMode(int N, int threads, int steps) {
 } // namespace
 
 int main(int argc, char** argv) {
-  const int N = argc > 1 ? std::atoi(argv[1]) : 300;
+  const std::string mesh_arg = argc > 1 ? argv[1] : "300";
+  const bool mesh_file = mesh_arg.size() > 4 && (mesh_arg.substr(mesh_arg.size() - 4) == ".msh" ||
+                                                 mesh_arg.substr(mesh_arg.size() - 4) == ".geo");
+  const int N = mesh_file ? 0 : std::atoi(mesh_arg.c_str());
   const int threads = argc > 2 ? std::atoi(argv[2]) : 2;
   const int steps = argc > 3 ? std::atoi(argv[3]) : 40;
   const bool all = !(argc > 4 && std::strcmp(argv[4], "explicit") == 0);
   omp_set_num_threads(threads);
   if (argc > 4 && std::strcmp(argv[4], "law") == 0)
     return lawMode(N, threads, steps);
-  const double c = std::sqrt(1e9 / (2 * 1.3) / 1000), dt = 0.4 / N / c;
-  const std::vector<std::string> set{"mesh.nx=" + std::to_string(N),
-                                     "time.dt=" + std::to_string(dt),
-                                     "time.t_end=" + std::to_string(1000 * dt)};
-  const membrane::Model model = membrane::readCase(LAMINA_SOURCE_DIR "/bench/membrane/bench.toml",
-                                                   set, {"/nonexistent/library.toml", ""});
-  std::printf("N = %d (%d triangles, %d DOF), threads = %d\n", N,
+  const double c = std::sqrt(1e9 / (2 * 1.3) / 1000), dt = mesh_file ? 4.3e-6 : 0.4 / N / c;
+  std::vector<std::string> set{"time.dt=" + std::to_string(dt),
+                               "time.t_end=" + std::to_string(1000 * dt)};
+  set.push_back(mesh_file ? "mesh.file=\"" + std::filesystem::absolute(mesh_arg).string() + "\""
+                          : "mesh.nx=" + std::to_string(N));
+  const membrane::Model model =
+      membrane::readCase(mesh_file ? LAMINA_SOURCE_DIR "/bench/membrane/bench-gmsh.toml"
+                                   : LAMINA_SOURCE_DIR "/bench/membrane/bench.toml",
+                         set, {"/nonexistent/library.toml", ""});
+  std::printf("%s (%d triangles, %d DOF), threads = %d\n",
+              mesh_file ? mesh_arg.c_str() : ("N = " + std::to_string(N)).c_str(),
               static_cast<int>(model.mesh.triangles.size()), model.numDofs(), threads);
 
   const membrane::SparseMatrix K = membrane::assemble(model.mesh, model.sections, false).K;

@@ -3,6 +3,7 @@
 
 #include "membrane/io/case_builders.hpp"
 #include "membrane/io/gmsh_reader.hpp"
+#include "membrane/model/mesh_ordering.hpp"
 
 #include "core/error.hpp"
 #include "core/format.hpp"
@@ -23,6 +24,10 @@ namespace {
 enum class MeshType { Rectangle, Gmsh };
 constexpr auto kMeshTypes =
     core::enumNames<MeshType>({{"rectangle", MeshType::Rectangle}, {"gmsh", MeshType::Gmsh}});
+/// How the nodes of a gmsh mesh are numbered for the run (`renumber`).
+enum class Renumber { Rcm, None };
+constexpr auto kRenumbers =
+    core::enumNames<Renumber>({{"rcm", Renumber::Rcm}, {"none", Renumber::None}});
 } // namespace
 
 Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path) {
@@ -42,11 +47,15 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
     return structuredRectangle(Lx, Ly, static_cast<int>(nx), static_cast<int>(ny));
   }
   std::filesystem::path file = r.getString("file"); // MeshType::Gmsh
+  const Renumber renumber = r.getChoice("renumber", kRenumbers, Renumber::Rcm);
   if (file.is_relative())
     file = case_path.parent_path() / file;
   if (!std::filesystem::exists(file))
     r.fail("file", "mesh file not found: " + file.string());
-  return readGmsh(file);
+  Mesh mesh = readGmsh(file);
+  if (renumber == Renumber::Rcm)
+    orderForLocality(mesh);
+  return mesh;
 }
 
 } // namespace lamina::membrane::case_io

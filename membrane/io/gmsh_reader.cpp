@@ -5,6 +5,7 @@
 #include "membrane/io/msh_check.hpp"
 
 #include <gmsh.h>
+#include <omp.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -62,7 +63,11 @@ struct GmshSession {
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::option::setNumber("General.Verbosity", 0);
   }
-  ~GmshSession() { gmsh::finalize(); }
+  ~GmshSession() {
+    gmsh::finalize();
+    omp_set_num_threads(threads_); // gmsh sets OpenMP's thread count to its own (1)
+  }
+  int threads_ = omp_get_max_threads();
 };
 
 /// Opens @p file with gmsh in a forked child first: gmsh trusts the file,

@@ -32,6 +32,8 @@ struct Mesh {
   std::vector<std::string> regions;                  ///< region names ("all" for the rectangle)
   std::map<std::string, std::vector<int>> node_sets; ///< named boundary node sets (sorted)
   std::string source;                                ///< file name or "structured"
+  std::vector<int> node_id;    ///< per node: the user's node number (empty: the index itself)
+  std::vector<int> element_id; ///< per triangle: the user's element number (empty: the index)
 
   /// @return the number of nodes
   int numNodes() const { return static_cast<int>(nodes.size()); }
