@@ -145,6 +145,11 @@ void H5File::writeInts(const std::string& name, const std::int32_t* data,
   write(name, H5T_NATIVE_INT32, data, dims);
 }
 
+void H5File::writeUInt64s(const std::string& name, const std::uint64_t* data,
+                          const std::vector<std::uint64_t>& dims) {
+  write(name, H5T_NATIVE_UINT64, data, dims);
+}
+
 namespace {
 /// @return the number of values of dataset @p set of shape @p d whose type
 /// has @p bytes bytes; throws naming the dataset when they cannot be there:

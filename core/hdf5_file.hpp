@@ -58,6 +58,9 @@ public:
   /// Writes a dataset of 32-bit integers with shape @p dims.
   void writeInts(const std::string& name, const std::int32_t* data,
                  const std::vector<std::uint64_t>& dims);
+  /// Writes a dataset of unsigned 64-bit integers (e.g. gmsh tags) with shape @p dims.
+  void writeUInt64s(const std::string& name, const std::uint64_t* data,
+                    const std::vector<std::uint64_t>& dims);
   /// Reads a dataset of doubles; @p dims receives its shape. Throws
   /// lamina::Error naming the file and dataset unless it stores numbers of
   /// the kind asked for (float here, integer below) of at most 8 bytes each.

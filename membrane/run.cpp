@@ -439,7 +439,8 @@ private:
         const auto& p = model_.mesh.nodes[worst];
         throw DivergenceError("non-finite energy at t = " + core::formatShort(sim.time()) +
                               " s (step " + std::to_string(sim.steps()) +
-                              "), largest motion at node " + std::to_string(worst) + " (" +
+                              "), largest motion at node " +
+                              std::to_string(model_.mesh.nodeLabel(worst)) + " (" +
                               core::formatShort(p.x()) + ", " + core::formatShort(p.y()) + ")");
       }
       const auto& e = last_energy_;
@@ -504,7 +505,7 @@ private:
     for (size_t k = 0; k < model_.probes.size(); ++k) {
       const auto& p = model_.probes[k];
       const int i = p.node;
-      probes[p.name] = {{"node", i},
+      probes[p.name] = {{"node", model_.mesh.nodeLabel(i)},
                         {"x", model_.mesh.nodes[i].x()},
                         {"y", model_.mesh.nodes[i].y()},
                         {"u", {sim.u()[3 * i], sim.u()[3 * i + 1], sim.u()[3 * i + 2]}},
@@ -531,7 +532,7 @@ private:
           f.first_element < 0
               ? nlohmann::json{{"element", nullptr}}
               : nlohmann::json{
-                    {"element", f.first_element},
+                    {"element", model_.mesh.elementLabel(f.first_element)},
                     {"time", f.first_time},
                     {"criterion", failureName(f.first_criterion)},
                     {"region", model_.mesh.regions[model_.mesh.region_of[f.first_element]]}};

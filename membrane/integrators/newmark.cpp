@@ -137,7 +137,7 @@ void Newmark::divergedInSolve(const State& s, const DivergenceError& e, double t
   const auto& p = model_.mesh.nodes[worst];
   std::ostringstream os;
   os << e.message() << " at t = " << t1 << " s (step " << s.step + 1 << "), largest motion at node "
-     << worst << " (" << p.x() << ", " << p.y() << ")";
+     << model_.mesh.nodeLabel(worst) << " (" << p.x() << ", " << p.y() << ")";
   throw DivergenceError(os.str());
 }
 

@@ -35,7 +35,7 @@ std::vector<int> readConstraints(const core::TableReader& root, Model& model) {
           continue;
         const int dof = 3 * node + comp;
         if (owner[dof] >= 0)
-          r.failHere("node " + std::to_string(node) + " is already constrained by '" +
+          r.failHere("node " + std::to_string(model.mesh.nodeLabel(node)) + " is already constrained by '" +
                      model.constraints[owner[dof]].name + "'");
         owner[dof] = static_cast<int>(model.constraints.size());
         c.dofs.push_back(dof);
@@ -129,7 +129,7 @@ void readRigidSets(const core::TableReader& root, Model& model, std::vector<int>
       for (int node : nodes) {
         const int dof = 3 * node + c;
         if (owner[dof] != -1)
-          r.failHere("node " + std::to_string(node) +
+          r.failHere("node " + std::to_string(model.mesh.nodeLabel(node)) +
                      " is already constrained or in another rigid set");
         owner[dof] = -2;
         set.dofs.push_back(dof);

@@ -145,6 +145,7 @@ NodeIndex readNodes(Mesh& m) {
     if (index.count(tags[k]))
       continue;
     index[tags[k]] = static_cast<int>(m.nodes.size());
+    m.node_id.push_back(tags[k]);
     m.nodes.emplace_back(coord[3 * k], coord[3 * k + 1]);
     const double z = coord[3 * k + 2];
     m.z.push_back(std::abs(z) > 1e-12 * (1 + std::abs(coord[3 * k])) ? z : 0.0);
@@ -209,6 +210,7 @@ void readTriangles(const NodeIndex& index, Mesh& m) {
       for (std::size_t k = 0; k + 2 < enodes[t].size(); k += 3) {
         m.triangles.push_back(
             {index.at(enodes[t][k]), index.at(enodes[t][k + 1]), index.at(enodes[t][k + 2])});
+        m.element_id.push_back(etags[t][k / 3]);
         m.region_of.push_back(region);
       }
     }
@@ -232,22 +234,25 @@ void readNodeSets(const NodeIndex& index, Mesh& m) {
 }
 
 /// Keeps only the nodes of @p m used by triangles (gmsh also returns e.g.
-/// circle centres), numbered in order of first use; node sets follow.
+/// circle centres), numbered in order of first use; node sets and node tags follow.
 void keepUsedNodes(Mesh& m) {
   std::vector<int> renum(m.nodes.size(), -1);
   std::vector<Eigen::Vector2d> used;
   std::vector<double> used_z;
+  std::vector<std::size_t> used_id;
   for (auto& t : m.triangles)
     for (int& i : t) {
       if (renum[i] < 0) {
         renum[i] = static_cast<int>(used.size());
         used.push_back(m.nodes[i]);
         used_z.push_back(m.z[i]);
+        used_id.push_back(m.node_id[i]);
       }
       i = renum[i];
     }
   m.nodes = std::move(used);
   m.z = std::move(used_z);
+  m.node_id = std::move(used_id);
   for (auto& [name, set] : m.node_sets) {
     std::vector<int> kept;
     for (int i : set)

@@ -48,6 +48,15 @@ FieldWriter::FieldWriter(const std::filesystem::path& dir, const std::string& st
   file_->writeDoubles("/mesh/geometry", xyz.data(), {n, 3});
   file_->writeInts("/mesh/topology", tri.data(), {ne, 3});
   file_->writeInts("/mesh/region", region.data(), {ne});
+  // The user's numbers of the nodes and triangles (gmsh tags; indices for the
+  // rectangle): a run renumbers gmsh meshes for speed (mesh_ordering.hpp).
+  std::vector<std::uint64_t> node_id(n), element_id(ne);
+  for (std::uint64_t i = 0; i < n; ++i)
+    node_id[i] = mesh.nodeLabel(static_cast<int>(i));
+  for (std::uint64_t e = 0; e < ne; ++e)
+    element_id[e] = mesh.elementLabel(static_cast<int>(e));
+  file_->writeUInt64s("/mesh/node_id", node_id.data(), {n});
+  file_->writeUInt64s("/mesh/element_id", element_id.data(), {ne});
   file_->createGroup("/steps");
   file_->flush();
   writeIndex();

@@ -137,7 +137,7 @@ void LargeDeflection::lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& 
   try {
     S = stepLawPoint(*s.law, F, s.tension_only, step_dt_, history_.data() + o, trial_.data() + o);
   } catch (const Error& err) {
-    throw DivergenceError("element " + std::to_string(e) + " (section '" + s.name + "', " +
+    throw DivergenceError("element " + std::to_string(body_.mesh.elementLabel(e)) + " (section '" + s.name + "', " +
                           s.material + ") at t = " + core::formatShort(step_t1_) +
                           " s: " + err.message());
   }

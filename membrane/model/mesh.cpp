@@ -81,9 +81,9 @@ void finalizeMesh(Mesh& mesh) {
   for (int e = 0; e < mesh.numElements(); ++e) {
     auto& t = mesh.triangles[e];
     for (int k = 0; k < 3; ++k)
-      LAMINA_CHECK(t[k] >= 0 && t[k] < n, mesh.source, ": triangle ", e,
+      LAMINA_CHECK(t[k] >= 0 && t[k] < n, mesh.source, ": triangle ", mesh.elementLabel(e),
                    " refers to a missing node");
-    LAMINA_CHECK(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], mesh.source, ": triangle ", e,
+    LAMINA_CHECK(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], mesh.source, ": triangle ", mesh.elementLabel(e),
                  " repeats a node");
     if (mesh.flat() && mesh.area(e) < 0)
       std::swap(t[1], t[2]);
@@ -92,7 +92,7 @@ void finalizeMesh(Mesh& mesh) {
     for (int k = 0; k < 3; ++k)
       l2 = std::max(l2, (mesh.point(t[k]) - mesh.point(t[(k + 1) % 3])).squaredNorm());
     LAMINA_CHECK((mesh.flat() ? mesh.area(e) : mesh.area3(e)) > 1e-12 * l2, mesh.source,
-                 ": triangle ", e, " is degenerate (zero area)");
+                 ": triangle ", mesh.elementLabel(e), " is degenerate (zero area)");
   }
   for (auto& [name, set] : mesh.node_sets) {
     std::sort(set.begin(), set.end());

@@ -32,9 +32,18 @@ struct Mesh {
   std::vector<std::string> regions;                  ///< region names ("all" for the rectangle)
   std::map<std::string, std::vector<int>> node_sets; ///< named boundary node sets (sorted)
   std::string source;                                ///< file name or "structured"
-  std::vector<int> node_id;    ///< per node: the user's node number (empty: the index itself)
-  std::vector<int> element_id; ///< per triangle: the user's element number (empty: the index)
+  /// Per node: the user's node number (the gmsh node tag); empty: the index
+  /// itself (structured rectangle). Runs renumber gmsh meshes (mesh_ordering.hpp).
+  std::vector<std::size_t> node_id;
+  /// Per triangle: the user's element number (the gmsh element tag); empty: the index.
+  std::vector<std::size_t> element_id;
 
+  /// @return the user's number of node @p i (node_id, else @p i): what messages and outputs print
+  std::size_t nodeLabel(int i) const { return node_id.empty() ? std::size_t(i) : node_id[i]; }
+  /// @return the user's number of triangle @p e (element_id, else @p e)
+  std::size_t elementLabel(int e) const {
+    return element_id.empty() ? std::size_t(e) : element_id[e];
+  }
   /// @return the number of nodes
   int numNodes() const { return static_cast<int>(nodes.size()); }
   /// @return the number of triangles

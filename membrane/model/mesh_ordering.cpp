@@ -30,12 +30,12 @@ void orderForLocality(Mesh& mesh) {
     renum[order[k]] = k;
   std::vector<Eigen::Vector2d> nodes(n);
   std::vector<double> z(mesh.z.empty() ? 0 : n);
-  std::vector<int> node_id(n);
+  std::vector<std::size_t> node_id(n);
   for (int k = 0; k < n; ++k) {
     nodes[k] = mesh.nodes[order[k]];
     if (!z.empty())
       z[k] = mesh.z[order[k]];
-    node_id[k] = mesh.node_id.empty() ? static_cast<int>(order[k]) : mesh.node_id[order[k]];
+    node_id[k] = mesh.nodeLabel(static_cast<int>(order[k]));
   }
   mesh.nodes = std::move(nodes);
   mesh.z = std::move(z);
@@ -57,11 +57,12 @@ void orderForLocality(Mesh& mesh) {
   std::stable_sort(eorder.begin(), eorder.end(),
                    [&](int a, int b) { return lowest(a) < lowest(b); });
   std::vector<std::array<int, 3>> tri(ne);
-  std::vector<int> region(ne), element_id(ne);
+  std::vector<int> region(ne);
+  std::vector<std::size_t> element_id(ne);
   for (int k = 0; k < ne; ++k) {
     tri[k] = mesh.triangles[eorder[k]];
     region[k] = mesh.region_of[eorder[k]];
-    element_id[k] = mesh.element_id.empty() ? eorder[k] : mesh.element_id[eorder[k]];
+    element_id[k] = mesh.elementLabel(eorder[k]);
   }
   mesh.triangles = std::move(tri);
   mesh.region_of = std::move(region);
