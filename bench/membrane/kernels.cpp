@@ -95,14 +95,16 @@ private:
 };
 
 /// @return @p t divided by @p n (per iteration of a timed call)
-Timing per(Timing t, double n) { return {t.best / n, t.cpu / n, t.median / n}; }
+Timing per(Timing t, double n) {
+  return {t.best / n, t.cpu / n, t.median / n};
+}
 
 /// The explicit step of bench/membrane/gvbo.toml at N x N with the section of
 /// catalog material @p material, whose law must be linear iff @p linear
 /// (else it exits 1: a timing of the wrong path is worse than none); prints
 /// the line and @return its timing.
-Timing lawStep(Report& report, int N, int steps, const char* material, bool linear,
-               const char* key, const char* what) {
+Timing lawStep(Report& report, int N, int steps, const char* material, bool linear, const char* key,
+               const char* what) {
   const std::vector<std::string> set{"mesh.nx=" + std::to_string(N),
                                      std::string("section[0].material=") + material};
   const membrane::Model model = membrane::readCase(LAMINA_SOURCE_DIR "/bench/membrane/gvbo.toml",
@@ -118,10 +120,10 @@ Timing lawStep(Report& report, int N, int steps, const char* material, bool line
 
 /// `law` mode: GVBO sheet against the elastic sheet, best wall and CPU per step.
 void lawMode(Report& report, int N, int threads, int steps) {
-  std::printf("N = %d (%d triangles), threads = %d, polyurea sheet (bench/membrane/gvbo.toml)\n",
-              N, 2 * N * N, threads);
-  const Timing elastic =
-      lawStep(report, N, steps, "polyurea-elastic-rest", true, "elastic_step", "explicit step, elastic");
+  std::printf("N = %d (%d triangles), threads = %d, polyurea sheet (bench/membrane/gvbo.toml)\n", N,
+              2 * N * N, threads);
+  const Timing elastic = lawStep(report, N, steps, "polyurea-elastic-rest", true, "elastic_step",
+                                 "explicit step, elastic");
   const Timing gvbo =
       lawStep(report, N, steps, "polyurea-gvbo", false, "gvbo_step", "explicit step, GVBO");
   report.ratio("gvbo_step/elastic_step", "GVBO step / elastic step", gvbo, elastic);
@@ -211,8 +213,8 @@ void explicitSteps(Report& report, const membrane::Model& model, int steps, Prod
     Eigen::VectorXd f;
     const Timing force = report.time("fabric_force", "fabric internal force", 30,
                                      [&] { sim.structure().internalForce(sim.u(), f); });
-    const Timing step = report.time("fabric_step", "explicit step, large deflection", steps,
-                                    [&] { sim.step(); });
+    const Timing step =
+        report.time("fabric_step", "explicit step, large deflection", steps, [&] { sim.step(); });
     report.ratio("fabric_step/floor", "large-deflection step / floor", step, floor);
     report.ratio("fabric_step/stencil", "large-deflection step / stencil", step, spmv.stencil);
     report.ratio("fabric_force/floor", "internal force / floor", force, floor);

@@ -53,7 +53,8 @@ class Figures:
 
     def kernels(self, mesh, th):
         mesh = self.n_kernels if mesh == "structured" else mesh
-        return load(os.path.join(self.out, "kernels-%s-%d.kernels.json" % (mesh, th))) if mesh else None
+        name = "kernels-%s-%d.kernels.json" % (mesh, th)
+        return load(os.path.join(self.out, name)) if mesh else None
 
     def best(self, mesh, th, key):
         """membrane_kernels' best wall of @key (ms)."""
@@ -84,7 +85,8 @@ def report(f):
     sn, kn = f.n_run, f.n_kernels
     print("--- targets, from this run (kernels: best wall per call; membrane run: mean step)")
     print("structured mesh: N = %s (membrane run), N = %s (kernels); unstructured: the gmsh square"
-          % (sn if sn else "- (no N <= 300 in SIZES)", kn if kn else "- (no N <= 300 in KERNEL_SIZES)"))
+          % (sn if sn else "- (no N <= 300 in SIZES)",
+             kn if kn else "- (no N <= 300 in KERNEL_SIZES)"))
     rows = []
     r = [quotient(f.step("gmsh", th), f.step("structured", th)) for th in (1, 2)]
     rows.append(("Newmark step, unstructured / structured",
