@@ -8,7 +8,6 @@
 #include <Eigen/CholmodSupport>
 #endif
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -19,12 +18,9 @@ namespace {
 /// turns every barrier into a scheduler time slice).
 constexpr int kParallelMin = 30000;
 
-/// The CG vector updates on nodes [i0, i1). Shared rows (PerNode = false):
-/// planar vectors (component c of node i at c n + i) and P, the 3x3
-/// preconditioner block, row-major, the same for all nodes (a run of shared
-/// rows); the loops are vectorized. Plain blocks (PerNode = true):
-/// interleaved vectors (3 i + c), 9 numbers of P per node from node 0, one
-/// node after the other (the sums in node order).
+/// The CG vector updates on nodes [i0, i1) of planar vectors (plane stride
+/// n). P: the 3x3 preconditioner block, row-major, the same for all nodes
+/// (a run of shared rows) or, with PerNode, 9 numbers per node from node 0.
 /// update: x += alpha p, r -= alpha q, z = P r; adds z.r to rz and r.r to rr.
 /// direction: p = P r + beta p (p = P r when beta = 0); adds z.r, r.r the same way.
 template <bool PerNode>
@@ -32,22 +28,20 @@ LAMINA_VECTOR_CLONES void updateNodes(const double* P, int n, double alpha, doub
                                       double* __restrict r, const double* __restrict p,
                                       const double* __restrict q, int i0, int i1, double& rz,
                                       double& rr) {
-  constexpr std::ptrdiff_t s3 = PerNode ? 3 : 1; // node stride
-  const std::ptrdiff_t n1 = PerNode ? 1 : n, n2 = 2 * n1;
+  const std::ptrdiff_t n1 = n, n2 = 2 * n1;
   double s = 0, t = 0;
-#pragma omp simd reduction(+ : s, t) if (simd : !PerNode)
+#pragma omp simd reduction(+ : s, t)
   for (int i = i0; i < i1; ++i) {
     const double* m = PerNode ? P + 9 * static_cast<std::ptrdiff_t>(i) : P;
-    const std::ptrdiff_t k = s3 * i;
-    x[k] += alpha * p[k];
-    x[n1 + k] += alpha * p[n1 + k];
-    x[n2 + k] += alpha * p[n2 + k];
-    const double r0 = r[k] - alpha * q[k];
-    const double r1 = r[n1 + k] - alpha * q[n1 + k];
-    const double r2 = r[n2 + k] - alpha * q[n2 + k];
-    r[k] = r0;
-    r[n1 + k] = r1;
-    r[n2 + k] = r2;
+    x[i] += alpha * p[i];
+    x[n1 + i] += alpha * p[n1 + i];
+    x[n2 + i] += alpha * p[n2 + i];
+    const double r0 = r[i] - alpha * q[i];
+    const double r1 = r[n1 + i] - alpha * q[n1 + i];
+    const double r2 = r[n2 + i] - alpha * q[n2 + i];
+    r[i] = r0;
+    r[n1 + i] = r1;
+    r[n2 + i] = r2;
     const double z0 = m[0] * r0 + m[1] * r1 + m[2] * r2;
     const double z1 = m[3] * r0 + m[4] * r1 + m[5] * r2;
     const double z2 = m[6] * r0 + m[7] * r1 + m[8] * r2;
@@ -62,23 +56,21 @@ template <bool PerNode>
 LAMINA_VECTOR_CLONES void directionNodes(const double* P, int n, double beta,
                                          const double* __restrict r, double* __restrict p, int i0,
                                          int i1, double& rz, double& rr) {
-  constexpr std::ptrdiff_t s3 = PerNode ? 3 : 1; // node stride
-  const std::ptrdiff_t n1 = PerNode ? 1 : n, n2 = 2 * n1;
+  const std::ptrdiff_t n1 = n, n2 = 2 * n1;
   double s = 0, t = 0;
   if (beta == 0) // p may hold anything (NaN) before the first direction
     for (int i = i0; i < i1; ++i)
-      p[s3 * i] = p[n1 + s3 * i] = p[n2 + s3 * i] = 0;
-#pragma omp simd reduction(+ : s, t) if (simd : !PerNode)
+      p[i] = p[n1 + i] = p[n2 + i] = 0;
+#pragma omp simd reduction(+ : s, t)
   for (int i = i0; i < i1; ++i) {
     const double* m = PerNode ? P + 9 * static_cast<std::ptrdiff_t>(i) : P;
-    const std::ptrdiff_t k = s3 * i;
-    const double r0 = r[k], r1 = r[n1 + k], r2 = r[n2 + k];
+    const double r0 = r[i], r1 = r[n1 + i], r2 = r[n2 + i];
     const double z0 = m[0] * r0 + m[1] * r1 + m[2] * r2;
     const double z1 = m[3] * r0 + m[4] * r1 + m[5] * r2;
     const double z2 = m[6] * r0 + m[7] * r1 + m[8] * r2;
-    p[k] = z0 + beta * p[k];
-    p[n1 + k] = z1 + beta * p[n1 + k];
-    p[n2 + k] = z2 + beta * p[n2 + k];
+    p[i] = z0 + beta * p[i];
+    p[n1 + i] = z1 + beta * p[n1 + i];
+    p[n2 + i] = z2 + beta * p[n2 + i];
     s += z0 * r0 + z1 * r1 + z2 * r2;
     t += r0 * r0 + r1 * r1 + r2 * r2;
   }
@@ -215,9 +207,9 @@ void StepSolver::remember(const Eigen::VectorXd& x) {
 
 /// One CG solve, shared by the threads of its parallel region.
 struct StepSolver::CgRun {
-  int nn;                               ///< nodes (the plane stride of planar vectors)
+  int nn;                               ///< nodes: the stride of the planar vectors
   double target;                        ///< converged when ||r|| <= target
-  bool per_node; ///< no shared rows: a preconditioner block per node, interleaved vectors
+  bool per_node;                        ///< one preconditioner block per node (no shared rows)
   std::vector<Partial> partial;         ///< per thread: the reductions' partial sums
   CgOutcome outcome = CgOutcome::limit; ///< thread 0's report, read after the region
   double final_rr = 0;                  ///< r.r at the end
@@ -245,8 +237,7 @@ struct StepSolver::CgThread {
 
 void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iterations,
                     bool have_residual) {
-  // Preconditioned CG on copies of x, r, p, q (planar or interleaved, as
-  // the matrix's storage suits) inside one parallel
+  // Preconditioned CG on planar copies of x, r, p, q inside one parallel
   // region: every thread keeps its static share of the nodes in all loops;
   // three barriers per iteration (after A p, after the update, after the
   // new direction). z = P r is not stored: the update and the direction
@@ -280,26 +271,17 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
 
 void StepSolver::cgThread(CgThread& t, const double* r0, bool have_residual, Eigen::VectorXd& x) {
   const int nn = t.run.nn;
-  const bool planar = !t.run.per_node;
   double* xp = xp_.data();
   double* rp = rp_.data();
   double* qp = qp_.data();
-  const std::ptrdiff_t d0 = 3 * static_cast<std::ptrdiff_t>(t.i0), d1 = 3 * std::ptrdiff_t(t.i1);
-  if (planar) {
-    toPlanar(x.data(), xp, nn, t.i0, t.i1);
-    toPlanar(r0, rp, nn, t.i0, t.i1);
-  } else {
-    std::copy(x.data() + d0, x.data() + d1, xp + d0);
-    std::copy(r0 + d0, r0 + d1, rp + d0);
-  }
+  toPlanar(x.data(), xp, nn, t.i0, t.i1);
+  toPlanar(r0, rp, nn, t.i0, t.i1);
 #pragma omp barrier
   if (!have_residual) { // r = b - A x
-    product(t, xp, qp);
-    for (int c = 0; c < 3; ++c) // the thread's dofs, in either layout
-      for (int i = t.i0; i < t.i1; ++i) {
-        const std::ptrdiff_t k = planar ? c * static_cast<std::ptrdiff_t>(nn) + i : 3 * i + c;
-        rp[k] -= qp[k];
-      }
+    Ab_.multiplyPlanar(xp, qp, t.i0, t.i1);
+    for (int c = 0; c < 3; ++c)
+      for (int i = t.i0; i < t.i1; ++i)
+        rp[c * static_cast<std::ptrdiff_t>(nn) + i] -= qp[c * static_cast<std::ptrdiff_t>(nn) + i];
   }
   double rz_part = 0, rr_part = 0;
   cgDirection(t, 0.0, rz_part, rr_part); // p = z = P r
@@ -309,10 +291,7 @@ void StepSolver::cgThread(CgThread& t, const double* r0, bool have_residual, Eig
   int it = 0;
   const CgOutcome result =
       std::sqrt(rr) <= t.run.target ? CgOutcome::converged : cgIterate(t, rz, rr, it);
-  if (planar)
-    fromPlanar(xp, x.data(), nn, t.i0, t.i1);
-  else
-    std::copy(xp + d0, xp + d1, x.data() + d0);
+  fromPlanar(xp, x.data(), nn, t.i0, t.i1);
   if (t.tid == 0) {
     t.run.outcome = result;
     t.run.final_rr = rr;
@@ -320,14 +299,10 @@ void StepSolver::cgThread(CgThread& t, const double* r0, bool have_residual, Eig
   }
 }
 
-double StepSolver::product(const CgThread& t, const double* x, double* y) const {
-  return t.run.per_node ? Ab_.multiplyInterleaved(x, y, t.i0, t.i1)
-                        : Ab_.multiplyPlanar(x, y, t.i0, t.i1);
-}
-
 StepSolver::CgOutcome StepSolver::cgIterate(CgThread& t, double rz, double& rr, int& it) {
   for (it = 1; it <= max_iterations_; ++it) {
-    t.run.partial[t.tid].v[0][0] = product(t, pp_.data(), qp_.data()); // q = A p, p.q
+    t.run.partial[t.tid].v[0][0] =
+        Ab_.multiplyPlanar(pp_.data(), qp_.data(), t.i0, t.i1); // q = A p, p.q
 #pragma omp barrier
     const double pq = t.total(0, 0);
     if (!(pq > 0) || !std::isfinite(pq))

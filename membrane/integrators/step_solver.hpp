@@ -71,8 +71,6 @@ private:
   void cgThread(CgThread& t, const double* r0, bool have_residual, Eigen::VectorXd& x);
   /// The iterations from p = P r (z.r = @p rz, r.r = @p rr); @p it counts them.
   CgOutcome cgIterate(CgThread& t, double rz, double& rr, int& it);
-  /// y = A x on the thread's nodes in the CG's layout; @return its part of x.y.
-  double product(const CgThread& t, const double* x, double* y) const;
   /// x += alpha p, r -= alpha q on the thread's nodes; adds z.r, r.r to @p rz, @p rr.
   void cgUpdate(const CgThread& t, double alpha, double& rz, double& rr);
   /// p = P r + beta p on the thread's nodes; adds z.r, r.r to @p rz, @p rr.
@@ -87,7 +85,7 @@ private:
   int projection_ = 0;                  // max basis size (0 = off)
   std::vector<Eigen::VectorXd> X_, AX_; // A-orthonormal past solutions and A X
   Eigen::VectorXd x0_, d_, ad_, r_;     // projection: start, new direction, A d, residual
-  Eigen::VectorXd xp_, rp_, pp_, qp_;   // CG vectors: planar with shared rows, else interleaved
+  Eigen::VectorXd xp_, rp_, pp_, qp_;   // CG vectors, planar (component c of node i at c n + i)
   struct Direct;
   std::unique_ptr<Direct> direct_;
   long total_iterations_ = 0, solves_ = 0;

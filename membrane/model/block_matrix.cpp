@@ -232,18 +232,20 @@ double BlockMatrix::product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
   double dot = 0;
 #pragma omp parallel for schedule(static) reduction(+ : dot) if (n > kParallelNodes)
   for (int i = 0; i < n; ++i) {
-    const double d = plainRow(xp, yp, i);
+    double y0 = 0, y1 = 0, y2 = 0;
+    for (int b = start_[i]; b < start_[i + 1]; ++b) {
+      const double* m = val_.data() + 9 * static_cast<std::size_t>(b);
+      const double* xj = xp + 3 * static_cast<std::ptrdiff_t>(col_[b]);
+      y0 += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
+      y1 += m[3] * xj[0] + m[4] * xj[1] + m[5] * xj[2];
+      y2 += m[6] * xj[0] + m[7] * xj[1] + m[8] * xj[2];
+    }
+    yp[3 * i] = y0;
+    yp[3 * i + 1] = y1;
+    yp[3 * i + 2] = y2;
     if (Dot)
-      dot += d;
+      dot += xp[3 * i] * y0 + xp[3 * i + 1] * y1 + xp[3 * i + 2] * y2;
   }
-  return dot;
-}
-
-double BlockMatrix::multiplyInterleaved(const double* x, double* y, int begin, int end) const {
-  LAMINA_ASSERT(kind_.empty());
-  double dot = 0;
-  for (int i = begin; i < end; ++i)
-    dot += plainRow(x, y, i);
   return dot;
 }
 

@@ -31,7 +31,6 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <cstddef>
 #include <vector>
 
 namespace lamina::membrane {
@@ -57,11 +56,6 @@ public:
   /// only on those rows; no threads: the caller splits the rows).
   /// @return the part of x.y from those rows.
   double multiplyPlanar(const double* x, double* y, int begin, int end) const;
-  /// Interleaved y = A x on the node rows [@p begin, @p end) of a matrix
-  /// without shared rows (sharedRows() == 0): x whole, y written only on
-  /// those rows, no threads. Per row the same operations as multiply().
-  /// @return the part of x.y from those rows.
-  double multiplyInterleaved(const double* x, double* y, int begin, int end) const;
   /// @return the diagonal 3x3 block of node @p i
   Eigen::Matrix3d diagonalBlock(int i) const;
   /// @return number of node rows
@@ -94,23 +88,6 @@ public:
 
 private:
   void shareRepeatedRows();
-  /// y_i = (row i) x for plain storage, interleaved; @return x_i . y_i.
-  double plainRow(const double* x, double* y, int i) const {
-    double y0 = 0, y1 = 0, y2 = 0;
-    for (int b = start_[i]; b < start_[i + 1]; ++b) {
-      const double* m = val_.data() + 9 * static_cast<std::size_t>(b);
-      const double* xj = x + 3 * static_cast<std::ptrdiff_t>(col_[b]);
-      y0 += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
-      y1 += m[3] * xj[0] + m[4] * xj[1] + m[5] * xj[2];
-      y2 += m[6] * xj[0] + m[7] * xj[1] + m[8] * xj[2];
-    }
-    double* yi = y + 3 * static_cast<std::ptrdiff_t>(i);
-    const double* xi = x + 3 * static_cast<std::ptrdiff_t>(i);
-    yi[0] = y0;
-    yi[1] = y1;
-    yi[2] = y2;
-    return xi[0] * y0 + xi[1] * y1 + xi[2] * y2;
-  }
   template <bool Dot>
   double product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   template <bool Dot>
