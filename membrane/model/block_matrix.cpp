@@ -9,6 +9,11 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <utility>
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#include <immintrin.h>
+#endif
 
 namespace lamina::membrane {
 
@@ -39,6 +44,17 @@ BlockMatrix::BlockMatrix(const SparseMatrix& A, bool share_rows) {
     }
   if (share_rows)
     shareRepeatedRows();
+  if (!kind_.empty())
+    return;
+  // Plain storage: blocks column-major (plainRows() loads a column at once),
+  // one pad value so the last column's 4-wide load stays inside.
+  for (std::size_t b = 0; b < col_.size(); ++b) {
+    double* m = val_.data() + 9 * b;
+    std::swap(m[1], m[3]);
+    std::swap(m[2], m[6]);
+    std::swap(m[5], m[7]);
+  }
+  val_.push_back(0.0);
 }
 
 void BlockMatrix::shareRepeatedRows() {
@@ -142,6 +158,67 @@ double runProduct(const int* off, const double* m, int nb, int n, const double* 
   return dot;
 }
 
+/// Plain blocks (column-major: m[3 d + c] = A(c, d)) on the rows [i0, i1):
+/// component c of node j of x and y at s j + c o (interleaved: s = 3, o = 1;
+/// planar: s = 1, o = n). Per row the operations and their order of the
+/// row-major product y_c += A(c,0) x_0 + A(c,1) x_1 + A(c,2) x_2, block
+/// after block. @return x.y on those rows, summed in node order.
+double plainRowsScalar(const int* start, const int* col, const double* val, const double* x,
+                       double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+  double dot = 0;
+  for (int i = i0; i < i1; ++i) {
+    double y0 = 0, y1 = 0, y2 = 0;
+    for (int b = start[i]; b < start[i + 1]; ++b) {
+      const double* m = val + 9 * static_cast<std::size_t>(b);
+      const double* xj = x + s * col[b];
+      const double a = xj[0], c = xj[o], d = xj[2 * o];
+      y0 += m[0] * a + m[3] * c + m[6] * d;
+      y1 += m[1] * a + m[4] * c + m[7] * d;
+      y2 += m[2] * a + m[5] * c + m[8] * d;
+    }
+    double* yi = y + s * i;
+    const double* xi = x + s * i;
+    yi[0] = y0;
+    yi[o] = y1;
+    yi[2 * o] = y2;
+    dot += xi[0] * y0 + xi[o] * y1 + xi[2 * o] * y2;
+  }
+  return dot;
+}
+
+#if defined(__GNUC__) && defined(__x86_64__)
+#define LAMINA_AVX_BLOCKS 1
+/// plainRowsScalar() with the three rows of a block in one AVX register:
+/// the same multiplications and additions in the same order per component
+/// (AVX without FMA: no contraction), so the same bits.
+__attribute__((target("avx"))) double plainRowsAvx(const int* start, const int* col,
+                                                   const double* val, const double* x, double* y,
+                                                   std::ptrdiff_t s, std::ptrdiff_t o, int i0,
+                                                   int i1) {
+  double dot = 0;
+  for (int i = i0; i < i1; ++i) {
+    __m256d acc = _mm256_setzero_pd();
+    for (int b = start[i]; b < start[i + 1]; ++b) {
+      const double* m = val + 9 * static_cast<std::size_t>(b);
+      const double* xj = x + s * col[b];
+      __m256d t = _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(m), _mm256_broadcast_sd(xj)),
+                                _mm256_mul_pd(_mm256_loadu_pd(m + 3), _mm256_broadcast_sd(xj + o)));
+      t = _mm256_add_pd(t, _mm256_mul_pd(_mm256_loadu_pd(m + 6), _mm256_broadcast_sd(xj + 2 * o)));
+      acc = _mm256_add_pd(acc, t);
+    }
+    alignas(32) double v[4];
+    _mm256_store_pd(v, acc);
+    double* yi = y + s * i;
+    const double* xi = x + s * i;
+    yi[0] = v[0];
+    yi[o] = v[1];
+    yi[2 * o] = v[2];
+    dot += xi[0] * v[0] + xi[o] * v[1] + xi[2 * o] * v[2];
+  }
+  return dot;
+}
+#endif
+
 /// Below this many node rows threads cost more than they save.
 constexpr int kParallelNodes = 10000;
 
@@ -181,25 +258,17 @@ double BlockMatrix::multiplyPlanar(const double* x, double* y, int begin, int en
     return dot;
   }
   // Plain blocks: one node at a time, columns gathered from the three planes.
-  const double* x1 = x + n;
-  const double* x2 = x + 2 * static_cast<std::ptrdiff_t>(n);
-  double dot = 0;
-  for (int i = begin; i < end; ++i) {
-    double y0 = 0, y1 = 0, y2 = 0;
-    for (int b = start_[i]; b < start_[i + 1]; ++b) {
-      const double* m = val_.data() + 9 * static_cast<std::size_t>(b);
-      const int j = col_[b];
-      const double a = x[j], c = x1[j], d = x2[j];
-      y0 += m[0] * a + m[1] * c + m[2] * d;
-      y1 += m[3] * a + m[4] * c + m[5] * d;
-      y2 += m[6] * a + m[7] * c + m[8] * d;
-    }
-    y[i] = y0;
-    y[n + i] = y1;
-    y[2 * static_cast<std::ptrdiff_t>(n) + i] = y2;
-    dot += x[i] * y0 + x1[i] * y1 + x2[i] * y2;
-  }
-  return dot;
+  return plainRows(x, y, 1, n, begin, end);
+}
+
+double BlockMatrix::plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o,
+                              int begin, int end) const {
+#ifdef LAMINA_AVX_BLOCKS
+  static const bool avx = __builtin_cpu_supports("avx");
+  if (avx)
+    return plainRowsAvx(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
+#endif
+  return plainRowsScalar(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
 }
 
 template <bool Dot>
@@ -224,27 +293,16 @@ double BlockMatrix::productViaPlanar(const Eigen::VectorXd& x, Eigen::VectorXd& 
 
 template <bool Dot>
 double BlockMatrix::product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
-  // Plain storage, interleaved vectors: the row of node i, absolute columns.
+  // Plain storage, interleaved vectors: each thread its contiguous rows.
   const int n = nodes();
   y.resize(3 * n);
-  const double* xp = x.data();
-  double* yp = y.data();
   double dot = 0;
-#pragma omp parallel for schedule(static) reduction(+ : dot) if (n > kParallelNodes)
-  for (int i = 0; i < n; ++i) {
-    double y0 = 0, y1 = 0, y2 = 0;
-    for (int b = start_[i]; b < start_[i + 1]; ++b) {
-      const double* m = val_.data() + 9 * static_cast<std::size_t>(b);
-      const double* xj = xp + 3 * static_cast<std::ptrdiff_t>(col_[b]);
-      y0 += m[0] * xj[0] + m[1] * xj[1] + m[2] * xj[2];
-      y1 += m[3] * xj[0] + m[4] * xj[1] + m[5] * xj[2];
-      y2 += m[6] * xj[0] + m[7] * xj[1] + m[8] * xj[2];
-    }
-    yp[3 * i] = y0;
-    yp[3 * i + 1] = y1;
-    yp[3 * i + 2] = y2;
+#pragma omp parallel reduction(+ : dot) if (n > kParallelNodes)
+  {
+    const auto [b, e] = core::threadRange(n);
+    const double d = plainRows(x.data(), y.data(), 3, 1, b, e);
     if (Dot)
-      dot += xp[3 * i] * y0 + xp[3 * i + 1] * y1 + xp[3 * i + 2] * y2;
+      dot += d;
   }
   return dot;
 }
@@ -258,8 +316,11 @@ Eigen::Matrix3d BlockMatrix::diagonalBlock(int i) const {
   const std::vector<double>& vals = shared ? kval_ : val_;
   const int diagonal = shared ? 0 : i;
   for (int b = start[t]; b < start[t + 1]; ++b)
-    if (cols[b] == diagonal)
-      return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(vals.data() + 9 * b);
+    if (cols[b] == diagonal) {
+      if (shared) // row-major
+        return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(vals.data() + 9 * b);
+      return Eigen::Map<const Eigen::Matrix3d>(vals.data() + 9 * b); // column-major
+    }
   return Eigen::Matrix3d::Zero();
 }
 

@@ -9,7 +9,12 @@
 /// are fewer than 1/16 of the nodes, rows equal to within 1e-14 of their
 /// largest entry (a few ulps of assembly round-off) share one stored copy and
 /// the product streams only x, y and one row index per node. Otherwise
-/// (unstructured meshes) the plain block storage is used.
+/// (unstructured meshes) the plain block storage is used: blocks stored
+/// column-major, and on CPUs with AVX a block's three rows are computed in
+/// one 4-wide register (a column of the block times one component of x).
+/// AVX without FMA and the same order of operations per component as the
+/// row-major scalar product (y_c += A(c,0) x_0 + A(c,1) x_1 + A(c,2) x_2,
+/// block after block in column order): the same bits with or without AVX.
 ///
 /// Two vector layouts. Interleaved (the solver's): dof 3 i + c. Planar (the
 /// CG iteration's): component c of node i at c n + i, three contiguous
@@ -31,6 +36,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <cstddef>
 #include <vector>
 
 namespace lamina::membrane {
@@ -88,6 +94,11 @@ public:
 
 private:
   void shareRepeatedRows();
+  /// y = A x on the rows [@p begin, @p end) of plain storage, component c
+  /// of node j at s j + c o in x and y; @return x.y there (AVX when the
+  /// CPU has it, the same bits either way).
+  double plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int begin,
+                   int end) const;
   template <bool Dot>
   double product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   template <bool Dot>
@@ -100,7 +111,7 @@ private:
   std::vector<int> run_begin_;          // first node of each run of equal kind_, then n
   std::vector<int> start_;              // block row pointers
   std::vector<int> col_;                // block column (node) of each block
-  std::vector<double> val_;             // 9 values per block, row-major
+  std::vector<double> val_;             // 9 values per block, column-major, then one pad
   mutable std::vector<double> xs_, ys_; // planar scratch of multiply() (shared rows)
 };
 
