@@ -4,7 +4,11 @@
 /// triangles anywhere in 3D (fabric_element.hpp), plane-stress stiffness per
 /// region, pre-stress, tension-only wrinkling, failure thresholds, lumped
 /// mass (rho h A / 3 per node plus point masses). The internal force is
-/// computed element by element (no global stiffness), in parallel.
+/// computed element by element (no global stiffness) in one parallel region
+/// with static shares: each element writes its 9 nodal forces, then each node
+/// sums its corners in element order (node -> corner lists, prefetched; no
+/// atomics, no serial section), so that a node's sum is the same at any
+/// thread count.
 ///
 /// A section with a linear law has S = C_ps E + S0 (Saint Venant-Kirchhoff,
 /// the fast path). A section with a nonlinear law (GVBO, a reduced-order
