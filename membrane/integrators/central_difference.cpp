@@ -149,53 +149,55 @@ void CentralDifference::restoreHistory(const History& h) {
 }
 
 void CentralDifference::step(State& s) {
-  // The vector work is two threaded passes around the force evaluation: the
-  // second computes a, v and du together.
+  // The vector work is two threaded passes around the force evaluation:
+  // v_{n+1/2}, u_{n+1} and du, then a_{n+1} and v_{n+1}.
   const double t1 = timeAt(s.step + 1);
   const double th = t_base_ + (static_cast<double>(s.step - step_base_) + 0.5) * dt_;
   const int n = structure_.numDofs();
   const double h = 0.5 * dt_, dt = dt_;
   vh_.resize(n);
   u1_.resize(n);
+  du_.resize(n);
+  int non_finite = 0;
+  const char* fixed = cons_.mask().data();
   {
     const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data();
-    double *vh = vh_.data(), *u1 = u1_.data();
-#pragma omp parallel for schedule(static) if (n > kParallelDofs)
+    double *vh = vh_.data(), *u1 = u1_.data(), *du = du_.data();
+#pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
     for (int i = 0; i < n; ++i) {
       vh[i] = v[i] + h * a[i];
       u1[i] = u[i] + dt * vh[i];
+      du[i] = u1[i] - u[i];
+      non_finite += !fixed[i] && !std::isfinite(u1[i]);
     }
   }
   for (size_t k = 0; k < cons_.size(); ++k) {
     const int d = cons_.dofs()[k];
     vh_[d] = cons_.velocity(k, th);
     u1_[d] = s.u[d] + dt * vh_[d];
+    du_[d] = u1_[d] - s.u[d];
+    non_finite += !std::isfinite(u1_[d]);
   }
   StateForces& next = prev_; // a_{n-1}'s forces are no longer needed
   evaluate(t1, u1_, vh_, next);
   a1_.resize(n);
   v1_.resize(n);
-  du_.resize(n);
   const ForceTotal total(next, loads_.hasExternal(), loads_.hasDrag());
-  int non_finite = 0;
   {
-    const double *u = s.u.data(), *vh = vh_.data(), *u1 = u1_.data(), *minv = minv_.data();
-    const char* fixed = cons_.mask().data();
-    double *a1 = a1_.data(), *v1 = v1_.data(), *du = du_.data();
+    const double *vh = vh_.data(), *minv = minv_.data();
+    double *a1 = a1_.data(), *v1 = v1_.data();
 #pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
     for (int i = 0; i < n; ++i) {
       a1[i] = minv[i] * total(i);
       v1[i] = vh[i] + h * a1[i];
-      du[i] = u1[i] - u[i];
-      non_finite +=
-          !std::isfinite(u1[i]) || (!fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i])));
+      non_finite += !fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i]));
     }
   }
   accelerateRigid(model_.rigid, rigid_mass_, total, a1_.data());
   for (const RigidSet& r : model_.rigid)
     for (int d : r.dofs) {
       v1_[d] = vh_[d] + h * a1_[d];
-      non_finite += !cons_.mask()[d] && (!std::isfinite(v1_[d]) || !std::isfinite(a1_[d]));
+      non_finite += !fixed[d] && (!std::isfinite(v1_[d]) || !std::isfinite(a1_[d]));
     }
   for (size_t k = 0; k < cons_.size(); ++k) {
     const int d = cons_.dofs()[k];

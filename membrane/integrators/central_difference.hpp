@@ -18,8 +18,8 @@
 /// default step is safety x that.
 ///
 /// Cost of a step: two threaded passes over the DOF vectors around the force
-/// evaluation (v_{n+1/2} and u_{n+1}; then a_{n+1}, v_{n+1} and the increment
-/// together), serial loops only over the constrained DOFs and rigid sets;
+/// evaluation (v_{n+1/2}, u_{n+1} and the increment; then a_{n+1} and
+/// v_{n+1}), serial loops only over the constrained DOFs and rigid sets;
 /// the external force and the drag are evaluated only when the case has them
 /// (else they stay the zero vectors of init()).
 
