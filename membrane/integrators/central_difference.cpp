@@ -41,7 +41,9 @@ CentralDifference::CentralDifference(const Model& model, const Structure& struct
 void CentralDifference::evaluate(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
                                  StateForces& f) {
   const int ndof = structure_.numDofs();
-  loads_.external(t, u, f.external);
+  // Without loads or drag their forces stay the zero vectors of the first call.
+  if (loads_.hasExternal() || f.external.size() != ndof)
+    loads_.external(t, u, f.external);
   if (loads_.hasDrag())
     loads_.drag(u, v, f.drag);
   else if (f.drag.size() != ndof)
@@ -53,33 +55,50 @@ void CentralDifference::evaluate(double t, const Eigen::VectorXd& u, const Eigen
   structure_.internalForce(u, f.internal);
 }
 
-void CentralDifference::accelerate(const StateForces& f, Eigen::VectorXd& a) const {
-  // a = m^-1 (F_ext + F_drag + F_s + F_damp - f_int) in one threaded pass.
-  const int n = structure_.numDofs();
-  a.resize(n);
-  const double *ext = f.external.data(), *drag = f.drag.data(), *fi = f.internal.data();
-  const double* spring = f.spring.size() ? f.spring.data() : nullptr;
-  const double* damp = f.damping.size() ? f.damping.data() : nullptr;
-  const double* minv = minv_.data();
-  double* ap = a.data();
-  auto total = [&](int i) {
-    double t = ext[i] + drag[i] - fi[i];
+namespace {
+/// The force of a = m^-1 (F_ext + F_drag + F_s + F_damp - f_int), DOF by DOF;
+/// absent terms are null (a zero external force or drag adds +0 exactly).
+struct ForceTotal {
+  const double *ext, *drag, *fi, *spring, *damp;
+  ForceTotal(const StateForces& f, bool external, bool drag_force)
+      : ext(external ? f.external.data() : nullptr), drag(drag_force ? f.drag.data() : nullptr),
+        fi(f.internal.data()), spring(f.spring.size() ? f.spring.data() : nullptr),
+        damp(f.damping.size() ? f.damping.data() : nullptr) {}
+  double operator()(int i) const {
+    // The sum ext + drag - fi of every step, with +0 for an absent term.
+    double t = ((ext ? ext[i] : 0.0) + (drag ? drag[i] : 0.0)) - fi[i];
     if (spring)
       t += spring[i];
     if (damp)
       t += damp[i];
     return t;
-  };
+  }
+};
+
+/// A rigid set's DOFs take its total force over its total mass @p mass.
+void accelerateRigid(const std::vector<RigidSet>& rigid, const std::vector<double>& mass,
+                     const ForceTotal& total, double* a) {
+  for (size_t k = 0; k < rigid.size(); ++k) {
+    double sum = 0;
+    for (int d : rigid[k].dofs)
+      sum += total(d);
+    for (int d : rigid[k].dofs)
+      a[d] = sum / mass[k];
+  }
+}
+} // namespace
+
+void CentralDifference::accelerate(const StateForces& f, Eigen::VectorXd& a) const {
+  // a = m^-1 (F_ext + F_drag + F_s + F_damp - f_int) in one threaded pass.
+  const int n = structure_.numDofs();
+  a.resize(n);
+  const ForceTotal total(f, true, true);
+  const double* minv = minv_.data();
+  double* ap = a.data();
 #pragma omp parallel for schedule(static) if (n > kParallelDofs)
   for (int i = 0; i < n; ++i)
     ap[i] = minv[i] * total(i);
-  for (size_t k = 0; k < model_.rigid.size(); ++k) {
-    double sum = 0;
-    for (int d : model_.rigid[k].dofs)
-      sum += total(d);
-    for (int d : model_.rigid[k].dofs)
-      ap[d] = sum / rigid_mass_[k];
-  }
+  accelerateRigid(model_.rigid, rigid_mass_, total, ap);
 }
 
 void CentralDifference::reactions(const Eigen::VectorXd& a, StateForces& f) const {
@@ -130,45 +149,56 @@ void CentralDifference::restoreHistory(const History& h) {
 }
 
 void CentralDifference::step(State& s) {
-  // The vector work is two threaded passes around the force evaluation.
+  // The vector work is two threaded passes around the force evaluation:
+  // v_{n+1/2}, u_{n+1} and du, then a_{n+1} and v_{n+1}.
   const double t1 = timeAt(s.step + 1);
   const double th = t_base_ + (static_cast<double>(s.step - step_base_) + 0.5) * dt_;
   const int n = structure_.numDofs();
   const double h = 0.5 * dt_, dt = dt_;
   vh_.resize(n);
   u1_.resize(n);
+  du_.resize(n);
+  int non_finite = 0;
+  const char* fixed = cons_.mask().data();
   {
     const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data();
-    double *vh = vh_.data(), *u1 = u1_.data();
-#pragma omp parallel for schedule(static) if (n > kParallelDofs)
+    double *vh = vh_.data(), *u1 = u1_.data(), *du = du_.data();
+#pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
     for (int i = 0; i < n; ++i) {
       vh[i] = v[i] + h * a[i];
       u1[i] = u[i] + dt * vh[i];
+      du[i] = u1[i] - u[i];
+      non_finite += !fixed[i] && !std::isfinite(u1[i]);
     }
   }
   for (size_t k = 0; k < cons_.size(); ++k) {
     const int d = cons_.dofs()[k];
     vh_[d] = cons_.velocity(k, th);
     u1_[d] = s.u[d] + dt * vh_[d];
+    du_[d] = u1_[d] - s.u[d];
+    non_finite += !std::isfinite(u1_[d]);
   }
   StateForces& next = prev_; // a_{n-1}'s forces are no longer needed
   evaluate(t1, u1_, vh_, next);
-  accelerate(next, a1_);
+  a1_.resize(n);
   v1_.resize(n);
-  du_.resize(n);
-  int non_finite = 0;
+  const ForceTotal total(next, loads_.hasExternal(), loads_.hasDrag());
   {
-    const double *u = s.u.data(), *vh = vh_.data(), *u1 = u1_.data(), *a1 = a1_.data();
-    const char* fixed = cons_.mask().data();
-    double *v1 = v1_.data(), *du = du_.data();
+    const double *vh = vh_.data(), *minv = minv_.data();
+    double *a1 = a1_.data(), *v1 = v1_.data();
 #pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
     for (int i = 0; i < n; ++i) {
+      a1[i] = minv[i] * total(i);
       v1[i] = vh[i] + h * a1[i];
-      du[i] = u1[i] - u[i];
-      non_finite +=
-          !std::isfinite(u1[i]) || (!fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i])));
+      non_finite += !fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i]));
     }
   }
+  accelerateRigid(model_.rigid, rigid_mass_, total, a1_.data());
+  for (const RigidSet& r : model_.rigid)
+    for (int d : r.dofs) {
+      v1_[d] = vh_[d] + h * a1_[d];
+      non_finite += !fixed[d] && (!std::isfinite(v1_[d]) || !std::isfinite(a1_[d]));
+    }
   for (size_t k = 0; k < cons_.size(); ++k) {
     const int d = cons_.dofs()[k];
     v1_[d] = cons_.velocity(k, t1);

@@ -12,7 +12,8 @@
 /// the same way) that U does not hold: the wrinkling dissipation, < 0 when the
 /// law generates energy. A nonlinear law's inelastic dissipation D_in (its
 /// own bookkeeping, law_point.hpp) enters the balance beside D. For the paper's Newmark scheme (beta1 = beta2 = 1/2,
-/// alpha = 0) the balance is zero in exact arithmetic.
+/// alpha = 0) the balance is zero in exact arithmetic. The dot products of
+/// the works are threaded on large models (on one thread Eigen's, unchanged).
 
 #include "membrane/integrators/time_integrator.hpp"
 #include "membrane/model/constraint.hpp"

@@ -36,18 +36,19 @@ LargeDeflection::LargeDeflection(const Body& body) : body_(body) {
   elements_.reserve(ne);
   for (int e = 0; e < ne; ++e)
     elements_.push_back(makeFabricElement(mesh, e, body.sections[mesh.region_of[e]].axis));
-  // Node -> element corners, so the gather of element forces needs no atomics.
+  // Node -> element corners, so the gather of element forces needs no atomics:
+  // each corner's force goes to its slot in its node's list (elements in order).
   node_start_.assign(n + 1, 0);
   for (const auto& t : mesh.triangles)
     for (int i : t)
       ++node_start_[i + 1];
   for (int i = 0; i < n; ++i)
     node_start_[i + 1] += node_start_[i];
-  node_entry_.resize(node_start_[n]);
+  corner_slot_.resize(3 * static_cast<size_t>(ne));
   std::vector<int> fill(node_start_.begin(), node_start_.end() - 1);
   for (int e = 0; e < ne; ++e)
     for (int a = 0; a < 3; ++a)
-      node_entry_[fill[mesh.triangles[e][a]]++] = 3 * e + a;
+      corner_slot_[3 * static_cast<size_t>(e) + a] = fill[mesh.triangles[e][a]]++;
   fe_.assign(9 * static_cast<size_t>(ne), 0.0);
   packed_.resize(ne);
   for (int e = 0; e < ne; ++e) {
@@ -205,6 +206,7 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
   const int ne = body_.mesh.numElements(), n = body_.mesh.numNodes();
   double* fe = fe_.data();
   core::ParallelErrors errors; // a nonlinear law's failure, naming the element
+  f.resize(3 * n);
   // Threads only pay off on large meshes (on small ones their start-up dominates).
 #pragma omp parallel if (ne > kParallelElements)
   {
@@ -214,17 +216,15 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
     // general path (their stress needs the principal decomposition).
     const double* x0 = x0_.data();
     const double* up = u.data();
-#pragma omp for schedule(static)
-    for (int e = 0; e < ne; ++e) {
+    auto force = [&](int e, double* out) {
       const Packed& p = packed_[e];
-      double* out = fe + 9 * static_cast<size_t>(e);
       const bool law_element = p.region < 0 && hasHistory() && history_offset_[e] >= 0;
       if (p.region < 0 && !law_element) {
         const FabricStress st = stress(e, u);
         const Eigen::Matrix3d fa =
             fabricForces(elements_[e], st, body_.sections[-1 - p.region].thickness);
         Eigen::Map<Eigen::Matrix3d>{out} = fa;
-        continue;
+        return;
       }
       double F0[3] = {0, 0, 0}, F1[3] = {0, 0, 0}; // columns of F
       for (int a = 0; a < 3; ++a) {
@@ -239,7 +239,7 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
         Eigen::Matrix<double, 3, 2> F;
         F << F0[0], F1[0], F0[1], F1[1], F0[2], F1[2];
         errors.run([&] { lawElementForce(e, F, out); });
-        continue;
+        return;
       }
       const double c00 = F0[0] * F0[0] + F0[1] * F0[1] + F0[2] * F0[2];
       const double c11 = F1[0] * F1[0] + F1[1] * F1[1] + F1[2] * F1[2];
@@ -254,14 +254,21 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
       for (int a = 0; a < 3; ++a)
         for (int c = 0; c < 3; ++c)
           out[3 * a + c] = P0[c] * p.dN[2 * a] + P1[c] * p.dN[2 * a + 1];
+    };
+    const int* slot = corner_slot_.data();
+#pragma omp for schedule(static)
+    for (int e = 0; e < ne; ++e) {
+      double out[9];
+      force(e, out);
+      for (int a = 0; a < 3; ++a) // stores in the gather's order, which streams its reads
+        for (int c = 0; c < 3; ++c)
+          fe[3 * static_cast<size_t>(slot[3 * static_cast<size_t>(e) + a]) + c] = out[3 * a + c];
     }
-#pragma omp single
-    f.resize(3 * n);
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {
       Eigen::Vector3d s = Eigen::Vector3d::Zero();
       for (int k = node_start_[i]; k < node_start_[i + 1]; ++k)
-        s += Eigen::Map<const Eigen::Vector3d>(fe + 3 * static_cast<size_t>(node_entry_[k]));
+        s += Eigen::Map<const Eigen::Vector3d>(fe + 3 * static_cast<size_t>(k));
       f.segment<3>(3 * i) = s;
     }
   }

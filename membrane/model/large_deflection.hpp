@@ -4,7 +4,11 @@
 /// triangles anywhere in 3D (fabric_element.hpp), plane-stress stiffness per
 /// region, pre-stress, tension-only wrinkling, failure thresholds, lumped
 /// mass (rho h A / 3 per node plus point masses). The internal force is
-/// computed element by element (no global stiffness), in parallel.
+/// computed element by element (no global stiffness) in one parallel region
+/// with static shares: each element writes its 3 corner forces to their
+/// slots, laid out node by node (each node's corners in element order), then
+/// each node sums its slots, a streaming read (no atomics, no serial
+/// section), so that a node's sum is the same at any thread count.
 ///
 /// A section with a linear law has S = C_ps E + S0 (Saint Venant-Kirchhoff,
 /// the fast path). A section with a nonlinear law (GVBO, a reduced-order
@@ -87,9 +91,9 @@ private:
   std::vector<Eigen::Matrix3d> cps_;     // per region
   std::vector<Eigen::Matrix3d> cps_inv_; // C_ps^-1 per region (1/Pa)
   std::vector<Eigen::Vector3d> s0_;      // pre-stress per region (Pa)
-  std::vector<int> node_start_;          // node -> (element, corner) list, CSR
-  std::vector<int> node_entry_;          // 3 * element + corner
-  mutable std::vector<double> fe_;       // element forces, 9 per element (scratch)
+  std::vector<int> node_start_;          // node -> its corners' slots [start, next start)
+  std::vector<int> corner_slot_;         // 3 * element + corner -> slot (elements in order)
+  mutable std::vector<double> fe_;       // corner forces, 3 per slot (scratch)
   /// What the internal-force loop reads per element, packed in one line of
   /// memory (72 bytes instead of the 160 of FabricElement plus the section).
   struct Packed {
