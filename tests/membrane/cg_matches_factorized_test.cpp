@@ -60,19 +60,7 @@ speed = 1.0
 
 TEST(MembraneCg, UnstructuredStrikeEqualsFactorizedSolve) {
   // gmsh circle: no repeated stencil, the plain block storage.
-  const std::string text = R"(
-[mesh]
-type = "gmsh"
-file = "../meshes/circle.geo"
-[[section]]
-region = "membrane"
-material = "table1-anisotropic"
-thickness = 1.0e-3
-[time]
-dt = 2.0e-7
-t_end = 1.0
-[[fixed]]
-nodes = "edge"
+  const std::string text = test::anisotropicCircle(1.0) + R"(
 [[strike]]
 at = [0.0, 0.0]
 speed = 10.0

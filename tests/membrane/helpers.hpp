@@ -92,6 +92,16 @@ inline std::string isotropicSquare(int nx, double L = 1.0) {
          "\n[[section]]\nE = 1.0e9\nnu = 0.3\ndensity = 1000.0\nthickness = 1.0e-3\n";
 }
 
+/// TOML of an anisotropic circle (cases/meshes/circle.geo, gmsh, Table 1's
+/// material, 1 mm), edge fixed, tau = 2e-7 s up to @p t_end; @p mesh_extra
+/// adds keys to [mesh] (e.g. renumber).
+inline std::string anisotropicCircle(double t_end, const std::string& mesh_extra = "") {
+  return "[mesh]\ntype = \"gmsh\"\nfile = \"../meshes/circle.geo\"\n" + mesh_extra +
+         "[[section]]\nregion = \"membrane\"\nmaterial = \"table1-anisotropic\"\n"
+         "thickness = 1.0e-3\n[time]\ndt = 2.0e-7\nt_end = " +
+         core::formatExact(t_end) + "\n[[fixed]]\nnodes = \"edge\"\n";
+}
+
 /// TOML of the blast tests' panel: a flat 1 m square of @p nx x nx squares
 /// of the roof's coated vinyl (E = 580 MPa, nu = 0.3, 1280 kg/m^3, 0.53 mm,
 /// tension only) on the large-deflection model, edges clamped, explicit to
