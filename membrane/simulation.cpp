@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 namespace lamina::membrane {
 
@@ -105,11 +106,27 @@ void Simulation::adaptStep() {
 
 namespace {
 constexpr const char* kIntegrator = "integrator/";
+
+/// A fingerprint of @p mesh's node and element order (the user's numbers in
+/// the run's order; FNV-1a), below 2^52 so that a double holds it exactly.
+double orderFingerprint(const Mesh& mesh) {
+  std::uint64_t h = 1469598103934665603ULL;
+  auto mix = [&h](std::uint64_t v) {
+    h ^= v;
+    h *= 1099511628211ULL;
+  };
+  for (int i = 0; i < mesh.numNodes(); ++i)
+    mix(mesh.nodeLabel(i));
+  for (int e = 0; e < mesh.numElements(); ++e)
+    mix(mesh.elementLabel(e));
+  return static_cast<double>(h >> 12);
+}
 } // namespace
 
 void Simulation::save(History& h) const {
   h["state/time"] = Eigen::Vector2d(state_.t, static_cast<double>(state_.step));
   h["state/u"] = state_.u;
+  h["mesh/order"] = Eigen::VectorXd::Constant(1, orderFingerprint(model_.mesh));
   h["state/v"] = state_.v;
   h["state/a"] = state_.a;
   h["works"] = (Eigen::VectorXd(6) << works_.external, works_.reaction, works_.drag, works_.spring,
@@ -178,6 +195,13 @@ void Simulation::restoreFailure(const History& h) {
 }
 
 void Simulation::restore(const History& h, long last_step) {
+  // Every per-node and per-element entry is in the run's order: a checkpoint
+  // of another order (an older build, another mesh.renumber) does not fit.
+  if (!h.count("mesh/order") ||
+      historyEntry(h, "mesh/order", 1)[0] != orderFingerprint(model_.mesh))
+    throw Error("checkpoint entry 'mesh/order': written with another order of the mesh's nodes "
+                "and elements (an older build of the program, or another mesh.renumber), its "
+                "state does not fit this run; run the case again without --restart");
   const double dt = historyEntry(h, "integrator/dt", 1)[0];
   // A run whose step adapts to its laws' state (hasHistory) may have changed it.
   if (dt != integrator_->timeStep() && !structure_->hasHistory())
@@ -194,8 +218,8 @@ void Simulation::restore(const History& h, long last_step) {
   // The schemes compute t_n from the step count (no accumulated round-off): exactly.
   if (state_.t != integrator_->timeAt(state_.step))
     throw Error("checkpoint entry 'state/time' holds t = " + core::formatExact(state_.t) +
-                " s at step " + std::to_string(state_.step) + ", not step * dt = " +
-                core::formatExact(integrator_->timeAt(state_.step)) +
+                " s at step " + std::to_string(state_.step) +
+                ", not step * dt = " + core::formatExact(integrator_->timeAt(state_.step)) +
                 " s (the scheme's time of that step)");
   state_.u = historyEntry(h, "state/u", n);
   state_.v = historyEntry(h, "state/v", n);

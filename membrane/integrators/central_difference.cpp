@@ -27,7 +27,8 @@ CentralDifference::CentralDifference(const Model& model, const Structure& struct
       m_[i] += it.value();
   minv_ = Eigen::VectorXd::Zero(ndof);
   for (int i = 0; i < ndof; ++i) {
-    LAMINA_CHECK(m_[i] > 0, "explicit integration: DOF ", i, " (node ", i / 3, ") has no mass");
+    LAMINA_CHECK(m_[i] > 0, "explicit integration: DOF ", i, " (node ",
+                 model_.mesh.nodeLabel(i / 3), ") has no mass");
     minv_[i] = cons.mask()[i] ? 0.0 : 1.0 / m_[i];
   }
   for (const auto& r : model.rigid) {

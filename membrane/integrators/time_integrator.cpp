@@ -63,8 +63,8 @@ void throwNonFinite(const Mesh& mesh, const State& s, double t1, const Eigen::Ve
     }
   const auto& p = mesh.nodes[bad];
   std::ostringstream os;
-  os << "non-finite state at t = " << t1 << " s (step " << s.step + 1 << "), node " << mesh.nodeLabel(bad)
-     << " at (" << p.x() << ", " << p.y() << ")" << hint;
+  os << "non-finite state at t = " << t1 << " s (step " << s.step + 1 << "), node "
+     << mesh.nodeLabel(bad) << " at (" << p.x() << ", " << p.y() << ")" << hint;
   throw DivergenceError(os.str());
 }
 

@@ -35,8 +35,8 @@ std::vector<int> readConstraints(const core::TableReader& root, Model& model) {
           continue;
         const int dof = 3 * node + comp;
         if (owner[dof] >= 0)
-          r.failHere("node " + std::to_string(model.mesh.nodeLabel(node)) + " is already constrained by '" +
-                     model.constraints[owner[dof]].name + "'");
+          r.failHere("node " + std::to_string(model.mesh.nodeLabel(node)) +
+                     " is already constrained by '" + model.constraints[owner[dof]].name + "'");
         owner[dof] = static_cast<int>(model.constraints.size());
         c.dofs.push_back(dof);
         c.amplitude.push_back(vel[comp]);

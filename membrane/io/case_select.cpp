@@ -126,20 +126,23 @@ bool inBox(const Eigen::Vector2d& p, const std::array<double, 4>& b, double tol)
   return p.x() >= b[0] - tol && p.x() <= b[1] + tol && p.y() >= b[2] - tol && p.y() <= b[3] + tol;
 }
 
-/// The first triangle of @p m containing @p p (barycentric test, with a
-/// relative tolerance of 1e-12 of its area), -1 if none.
+/// The triangle of @p m containing @p p (barycentric test, with a relative
+/// tolerance of 1e-12 of its area) with the lowest user number (on a shared
+/// edge or corner, whatever the run's order), -1 if none.
 int elementAt(const Mesh& m, const Eigen::Vector2d& p) {
   auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
     return a.x() * b.y() - a.y() * b.x();
   };
+  int found = -1;
   for (int e = 0; e < m.numElements(); ++e) {
     const auto& t = m.triangles[e];
     const Eigen::Vector2d a = m.nodes[t[0]], b = m.nodes[t[1]], c = m.nodes[t[2]];
     const double A2 = cross(b - a, c - a), eps = -1e-12 * A2;
-    if (cross(b - a, p - a) >= eps && cross(c - b, p - b) >= eps && cross(a - c, p - c) >= eps)
-      return e;
+    if (cross(b - a, p - a) >= eps && cross(c - b, p - b) >= eps && cross(a - c, p - c) >= eps &&
+        (found < 0 || m.elementLabel(e) < m.elementLabel(found)))
+      found = e;
   }
-  return -1;
+  return found;
 }
 
 /// What a selection yields: node or element indices.

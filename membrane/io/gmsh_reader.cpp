@@ -57,6 +57,8 @@ double estimateSurfaceNodes() {
   return 0.5 * area / (std::sqrt(3.0) / 4 * h * h);
 }
 
+/// One use of gmsh's global state: initialize quietly, and on exit finalize
+/// and give OpenMP back the thread count gmsh's start-up replaced with its own.
 struct GmshSession {
   GmshSession() {
     gmsh::initialize(0, nullptr, false);
@@ -67,7 +69,7 @@ struct GmshSession {
     gmsh::finalize();
     omp_set_num_threads(threads_); // gmsh sets OpenMP's thread count to its own (1)
   }
-  int threads_ = omp_get_max_threads();
+  int threads_ = omp_get_max_threads(); ///< OpenMP's thread count before gmsh started
 };
 
 /// Opens @p file with gmsh in a forked child first: gmsh trusts the file,

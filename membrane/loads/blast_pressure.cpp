@@ -15,7 +15,8 @@ BlastPressure::BlastPressure(std::string name, std::vector<int> elements, const 
     try {
       histories_[static_cast<std::size_t>(e)] = charge.historyAt(c);
     } catch (const Error& err) {
-      throw Error("blast on element " + std::to_string(e) + ": " + err.message());
+      throw Error("blast on element " + std::to_string(mesh.elementLabel(e)) + ": " +
+                  err.message());
     }
   }
 }

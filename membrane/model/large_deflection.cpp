@@ -138,8 +138,8 @@ void LargeDeflection::lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& 
   try {
     S = stepLawPoint(*s.law, F, s.tension_only, step_dt_, history_.data() + o, trial_.data() + o);
   } catch (const Error& err) {
-    throw DivergenceError("element " + std::to_string(body_.mesh.elementLabel(e)) + " (section '" + s.name + "', " +
-                          s.material + ") at t = " + core::formatShort(step_t1_) +
+    throw DivergenceError("element " + std::to_string(body_.mesh.elementLabel(e)) + " (section '" +
+                          s.name + "', " + s.material + ") at t = " + core::formatShort(step_t1_) +
                           " s: " + err.message());
   }
   Eigen::Matrix2d Sm;
@@ -258,7 +258,7 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
     const int* slot = corner_slot_.data();
 #pragma omp for schedule(static)
     for (int e = 0; e < ne; ++e) {
-      double out[9];
+      double out[9] = {}; // stays zero when a law's failure is recorded in errors
       force(e, out);
       for (int a = 0; a < 3; ++a) // stores in the gather's order, which streams its reads
         for (int c = 0; c < 3; ++c)

@@ -31,8 +31,10 @@ int Mesh::nearestNode(const Eigen::Vector2d& p) const {
   double d = std::numeric_limits<double>::infinity();
   for (int i = 0; i < numNodes(); ++i) {
     const double di = (nodes[i] - p).squaredNorm();
-    if (di < d * (1 - 1e-12)) { // ties (symmetric grids) go to the lowest index
-      d = di;
+    // Ties (symmetric grids) go to the lowest user number, whatever the run's order.
+    const bool tie = best >= 0 && !(di < d * (1 - 1e-12)) && di <= d * (1 + 1e-12);
+    if (di < d * (1 - 1e-12) || (tie && nodeLabel(i) < nodeLabel(best))) {
+      d = std::min(d, di);
       best = i;
     }
   }
@@ -83,8 +85,8 @@ void finalizeMesh(Mesh& mesh) {
     for (int k = 0; k < 3; ++k)
       LAMINA_CHECK(t[k] >= 0 && t[k] < n, mesh.source, ": triangle ", mesh.elementLabel(e),
                    " refers to a missing node");
-    LAMINA_CHECK(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], mesh.source, ": triangle ", mesh.elementLabel(e),
-                 " repeats a node");
+    LAMINA_CHECK(t[0] != t[1] && t[1] != t[2] && t[0] != t[2], mesh.source, ": triangle ",
+                 mesh.elementLabel(e), " repeats a node");
     if (mesh.flat() && mesh.area(e) < 0)
       std::swap(t[1], t[2]);
     // Degenerate: area tiny compared with the square of its longest edge.

@@ -10,10 +10,10 @@
 namespace lamina::membrane {
 
 namespace {
-using Graph = boost::adjacency_list<
-    boost::setS, boost::vecS, boost::undirectedS,
-    boost::property<boost::vertex_color_t, boost::default_color_type,
-                    boost::property<boost::vertex_degree_t, int>>>;
+using Graph =
+    boost::adjacency_list<boost::setS, boost::vecS, boost::undirectedS,
+                          boost::property<boost::vertex_color_t, boost::default_color_type,
+                                          boost::property<boost::vertex_degree_t, int>>>;
 } // namespace
 
 void orderForLocality(Mesh& mesh) {

@@ -134,6 +134,13 @@ TEST_F(EditedCheckpoint, SizesAreCheckedAgainstTheModel) {
                 "integrator/forces/reaction");
 }
 
+// Per-node and per-element entries are in the run's node order: a checkpoint
+// without the order's fingerprint (an older build) or with another one is refused.
+TEST_F(EditedCheckpoint, AnotherNodeOrderIsRefused) {
+  expectRefused([](History& h) { h.erase("mesh/order"); }, "mesh/order", "another order");
+  expectRefused([](History& h) { h["mesh/order"][0] += 1; }, "mesh/order", "another order");
+}
+
 TEST_F(EditedCheckpoint, NonFiniteValuesAreRefused) {
   for (const char* key : {"state/v", "works", "run/last_energy", "integrator/forces/drag"})
     expectRefused([&](History& h) { h.at(key)[0] = kNan; }, key, "not finite");

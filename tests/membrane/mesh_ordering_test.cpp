@@ -146,7 +146,8 @@ TEST(MeshOrdering, RenumberedRunEqualsTheRunInFileOrder) {
     b.step();
     for (int i = 0; i < rcm.mesh.numNodes(); ++i) {
       const int j = in_file.at(rcm.mesh.nodeLabel(i));
-      diff = std::max(diff, (a.u().segment<3>(3 * i) - b.u().segment<3>(3 * j)).cwiseAbs().maxCoeff());
+      diff =
+          std::max(diff, (a.u().segment<3>(3 * i) - b.u().segment<3>(3 * j)).cwiseAbs().maxCoeff());
     }
     scale = std::max(scale, b.u().cwiseAbs().maxCoeff());
   }
@@ -176,9 +177,24 @@ TEST(MeshOrdering, FieldFileMapsNodesAndElementsToTheMeshFile) {
   const Mesh file_order = readGmsh(test::sourcePath("cases/meshes/circle.geo"));
   EXPECT_EQ(std::set<std::int32_t>(nodes.begin(), nodes.end()),
             std::set<std::int32_t>(file_order.node_id.begin(), file_order.node_id.end()));
-  for (int i = 0; i < m.mesh.numNodes(); ++i)
-    EXPECT_EQ(std::size_t(nodes[i]), m.mesh.node_id[i]);
-  for (int e = 0; e < m.mesh.numElements(); ++e)
-    EXPECT_EQ(std::size_t(elements[e]), m.mesh.element_id[e]);
+  // Row i of /mesh/geometry is the node gmsh calls nodes[i]; the corners of
+  // row e of /mesh/topology are those of the triangle gmsh calls elements[e].
+  const std::vector<double> xyz = h5.readDoubles("/mesh/geometry", dims);
+  const std::vector<std::int32_t> topology = h5.readInts("/mesh/topology", dims);
+  std::map<std::size_t, int> node_of_tag, element_of_tag;
+  for (int i = 0; i < file_order.numNodes(); ++i)
+    node_of_tag[file_order.node_id[i]] = i;
+  for (int e = 0; e < file_order.numElements(); ++e)
+    element_of_tag[file_order.element_id[e]] = e;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const Eigen::Vector3d p = file_order.point(node_of_tag.at(std::size_t(nodes[i])));
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(xyz[3 * i + c], p[c]);
+  }
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const auto& t = file_order.triangles[element_of_tag.at(std::size_t(elements[e]))];
+    for (int a = 0; a < 3; ++a)
+      EXPECT_EQ(std::size_t(nodes[topology[3 * e + a]]), file_order.node_id[t[a]]);
+  }
   std::filesystem::remove_all(opt.out_dir);
 }
