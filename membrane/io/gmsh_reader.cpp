@@ -239,29 +239,12 @@ void readNodeSets(const NodeIndex& index, Mesh& m) {
 /// circle centres), numbered in order of first use; node sets and node tags follow.
 void keepUsedNodes(Mesh& m) {
   std::vector<int> renum(m.nodes.size(), -1);
-  std::vector<Eigen::Vector2d> used;
-  std::vector<double> used_z;
-  std::vector<std::size_t> used_id;
-  for (auto& t : m.triangles)
-    for (int& i : t) {
-      if (renum[i] < 0) {
-        renum[i] = static_cast<int>(used.size());
-        used.push_back(m.nodes[i]);
-        used_z.push_back(m.z[i]);
-        used_id.push_back(m.node_id[i]);
-      }
-      i = renum[i];
-    }
-  m.nodes = std::move(used);
-  m.z = std::move(used_z);
-  m.node_id = std::move(used_id);
-  for (auto& [name, set] : m.node_sets) {
-    std::vector<int> kept;
-    for (int i : set)
-      if (renum[i] >= 0)
-        kept.push_back(renum[i]);
-    set = std::move(kept);
-  }
+  int used = 0;
+  for (const auto& t : m.triangles)
+    for (int i : t)
+      if (renum[i] < 0)
+        renum[i] = used++;
+  renumberNodes(m, renum);
 }
 } // namespace
 

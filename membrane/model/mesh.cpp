@@ -5,6 +5,7 @@
 #include "core/resources.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -69,6 +70,39 @@ void requireRunMemory(double nodes, const std::string& what, const ErrorContext&
                 context);
   core::requireMemory(nodes * kRunBytesPerNode,
                       "a run on " + what + " (" + core::formatShort(nodes) + " nodes)", context);
+}
+
+void renumberNodes(Mesh& mesh, const std::vector<int>& old_to_new) {
+  const auto kept = static_cast<std::size_t>(
+      std::count_if(old_to_new.begin(), old_to_new.end(), [](int k) { return k >= 0; }));
+  std::vector<Eigen::Vector2d> nodes(kept);
+  std::vector<double> z(mesh.z.empty() ? 0 : kept);
+  std::vector<std::size_t> node_id(kept);
+  for (int i = 0; i < mesh.numNodes(); ++i) {
+    const int k = old_to_new[i];
+    if (k < 0)
+      continue;
+    nodes[k] = mesh.nodes[i];
+    if (!z.empty())
+      z[k] = mesh.z[i];
+    node_id[k] = mesh.nodeLabel(i);
+  }
+  for (auto& t : mesh.triangles)
+    for (int& i : t) {
+      assert(old_to_new[i] >= 0 && "a triangle uses a dropped node");
+      i = old_to_new[i];
+    }
+  for (auto& [name, set] : mesh.node_sets) {
+    std::vector<int> renumbered;
+    for (int i : set)
+      if (old_to_new[i] >= 0)
+        renumbered.push_back(old_to_new[i]);
+    std::sort(renumbered.begin(), renumbered.end());
+    set = std::move(renumbered);
+  }
+  mesh.nodes = std::move(nodes);
+  mesh.z = std::move(z);
+  mesh.node_id = std::move(node_id);
 }
 
 void finalizeMesh(Mesh& mesh) {

@@ -87,6 +87,12 @@ inline constexpr double kMaxSteps = 1e8;
 /// (kRunBytesPerNode each); @p what names the mesh in the message.
 void requireRunMemory(double nodes, const std::string& what, const ErrorContext& context);
 
+/// Renumbers the nodes of @p mesh: node i becomes @p old_to_new[i], or is
+/// dropped where that is -1 (no triangle may use it; the new numbers are
+/// 0 .. kept - 1). Coordinates, z, node_id (the user's numbers, which the
+/// nodes keep), triangles and node sets follow; node sets come out sorted.
+void renumberNodes(Mesh& mesh, const std::vector<int>& old_to_new);
+
 /// Orients triangles counter-clockwise and checks the mesh (no degenerate
 /// triangle, indices in range). Throws lamina::Error naming @p mesh.source.
 void finalizeMesh(Mesh& mesh);

@@ -28,26 +28,7 @@ void orderForLocality(Mesh& mesh) {
   std::vector<int> renum(static_cast<std::size_t>(n)); // old -> new
   for (int k = 0; k < n; ++k)
     renum[order[k]] = k;
-  std::vector<Eigen::Vector2d> nodes(n);
-  std::vector<double> z(mesh.z.empty() ? 0 : n);
-  std::vector<std::size_t> node_id(n);
-  for (int k = 0; k < n; ++k) {
-    nodes[k] = mesh.nodes[order[k]];
-    if (!z.empty())
-      z[k] = mesh.z[order[k]];
-    node_id[k] = mesh.nodeLabel(static_cast<int>(order[k]));
-  }
-  mesh.nodes = std::move(nodes);
-  mesh.z = std::move(z);
-  mesh.node_id = std::move(node_id);
-  for (auto& t : mesh.triangles)
-    for (int& i : t)
-      i = renum[i];
-  for (auto& [name, set] : mesh.node_sets) {
-    for (int& i : set)
-      i = renum[i];
-    std::sort(set.begin(), set.end());
-  }
+  renumberNodes(mesh, renum);
   std::vector<int> eorder(ne);
   std::iota(eorder.begin(), eorder.end(), 0);
   auto lowest = [&](int e) {

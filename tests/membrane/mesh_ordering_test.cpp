@@ -31,16 +31,8 @@ Mesh scrambled(const Mesh& m, unsigned seed) {
   std::iota(perm.begin(), perm.end(), 0);
   std::shuffle(perm.begin(), perm.end(), std::mt19937(seed));
   Mesh s = m;
-  for (int i = 0; i < m.numNodes(); ++i)
-    s.nodes[perm[i]] = m.nodes[i];
-  for (auto& t : s.triangles)
-    for (int& i : t)
-      i = perm[i];
-  for (auto& [name, set] : s.node_sets) {
-    for (int& i : set)
-      i = perm[i];
-    std::sort(set.begin(), set.end());
-  }
+  renumberNodes(s, perm);
+  s.node_id.clear(); // a mesh as a user gives it: its numbers are its indices
   return s;
 }
 
