@@ -23,6 +23,15 @@ int interruptSignal() {
   return static_cast<int>(g_signal);
 }
 
+void requestInterrupt(int signal) {
+  g_signal = signal;
+}
+
+void throwIfInterrupted(const std::string& what) {
+  if (const int sig = interruptSignal())
+    throw Interrupted(sig, what + " stopped by " + signalName(sig));
+}
+
 InterruptGuard::InterruptGuard() {
   g_signal = 0;
   struct sigaction sa;

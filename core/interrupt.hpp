@@ -16,6 +16,17 @@ namespace lamina::core {
 /// SIGTERM), 0 if none
 int interruptSignal();
 
+/// Asks the work to stop at its next safe point as if @p signal had been
+/// received (the Python module: a progress callback that raised). The
+/// request lasts until the next InterruptGuard is installed.
+void requestInterrupt(int signal);
+
+/// Throws Interrupted(@p what) if a signal was received or an interrupt
+/// requested: the poll of work that has nothing to write when it stops
+/// (a cell's solves). Free when no InterruptGuard is installed (the
+/// request is then never set by a signal).
+void throwIfInterrupted(const std::string& what);
+
 /// Installs the handlers for its lifetime and restores the previous ones.
 class InterruptGuard {
 public:

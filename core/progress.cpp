@@ -6,12 +6,37 @@
 
 namespace lamina::core {
 
+namespace {
+thread_local ProgressObserver t_observer;
+} // namespace
+
+ScopedProgressObserver::ScopedProgressObserver(ProgressObserver observer)
+    : previous_(std::move(t_observer)) {
+  t_observer = std::move(observer);
+}
+
+ScopedProgressObserver::~ScopedProgressObserver() {
+  t_observer = std::move(previous_);
+}
+
+void ProgressLine::observe(long done, bool last) {
+  if (!t_observer)
+    return;
+  const auto now = std::chrono::steady_clock::now();
+  if (observed_ && !last && now - last_observed_ < std::chrono::milliseconds(200))
+    return;
+  observed_ = true;
+  last_observed_ = now;
+  t_observer(label_, done, total_);
+}
+
 ProgressLine::ProgressLine(std::string label, long total, bool quiet, int log_every_percent)
     : label_(std::move(label)), total_(std::max(1L, total)), quiet_(quiet),
       tty_(::isatty(STDERR_FILENO) != 0), every_(std::max(1, log_every_percent)),
       start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
 
 void ProgressLine::update(long done, const std::string& note) {
+  observe(done, done >= total_);
   if (quiet_)
     return;
   const int percent = static_cast<int>(100.0 * static_cast<double>(done) / total_);
@@ -32,6 +57,7 @@ void ProgressLine::update(long done, const std::string& note) {
 }
 
 void ProgressLine::finish(const std::string& note) {
+  observe(total_, true);
   if (quiet_)
     return;
   const double elapsed =

@@ -7,9 +7,31 @@
 /// nothing (used by --json runs and tests).
 
 #include <chrono>
+#include <functional>
 #include <string>
 
 namespace lamina::core {
+
+/// What a progress observer receives: the line's label, the units done and
+/// their total.
+using ProgressObserver = std::function<void(const std::string& label, long done, long total)>;
+
+/// Routes every ProgressLine of the calling thread to @p observer for its
+/// lifetime (the Python module's progress callbacks), whether or not the
+/// line prints. An observer sees at most one update per 0.2 s of a line, its
+/// first and its last (done == total, or the finish). Scopes nest; the
+/// previous observer is restored on destruction.
+class ScopedProgressObserver {
+public:
+  /// @param observer called from the thread that reports progress
+  explicit ScopedProgressObserver(ProgressObserver observer);
+  ~ScopedProgressObserver();
+  ScopedProgressObserver(const ScopedProgressObserver&) = delete;
+  ScopedProgressObserver& operator=(const ScopedProgressObserver&) = delete;
+
+private:
+  ProgressObserver previous_;
+};
 
 /// One progress line on stderr.
 class ProgressLine {
@@ -31,7 +53,11 @@ private:
   bool tty_;
   int every_;
   int last_percent_ = -1;
-  std::chrono::steady_clock::time_point start_, last_draw_;
+  std::chrono::steady_clock::time_point start_, last_draw_, last_observed_;
+  bool observed_ = false; ///< the observer has seen this line
+
+  /// Passes (done, total) to the thread's observer, if any, at most every 0.2 s
+  void observe(long done, bool last);
 };
 
 } // namespace lamina::core
