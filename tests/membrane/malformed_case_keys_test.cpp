@@ -85,6 +85,15 @@ TEST(MalformedCaseKeys, ExplicitKeysAreRefusedUnderNewmark) {
   }
 }
 
+// mesh.renumber takes "rcm" or "none", and only on a gmsh mesh (the
+// rectangle is numbered for locality by construction).
+TEST(MalformedCaseKeys, RenumberTakesItsChoicesOnGmshMeshesOnly) {
+  expectNames(errorWith(kNewmark, {"mesh.type=\"gmsh\"", "mesh.file=\"../meshes/square.geo\"",
+                                   "mesh.renumber=\"metis\""}),
+              {"mesh.renumber", "metis", "rcm", "none"});
+  expectNames(errorWith(kNewmark, {"mesh.renumber=\"none\""}), {"mesh.renumber"});
+}
+
 // Through the program: exit 1, the key named, nothing run.
 TEST(MalformedCaseKeys, ProgramRefusesWrappedIntegerAndOtherSchemeKey) {
   const test::Folder dir("case-keys");
