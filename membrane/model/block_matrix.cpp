@@ -219,6 +219,9 @@ __attribute__((target("avx"))) double plainRowsAvx(const int* start, const int* 
 }
 #endif
 
+/// The kernel BlockMatrix::useKernel chose.
+BlockKernel g_kernel = BlockKernel::Fastest;
+
 /// Below this many node rows threads cost more than they save.
 constexpr int kParallelNodes = 10000;
 
@@ -261,11 +264,15 @@ double BlockMatrix::multiplyPlanar(const double* x, double* y, int begin, int en
   return plainRows(x, y, 1, n, begin, end);
 }
 
+void BlockMatrix::useKernel(BlockKernel kernel) {
+  g_kernel = kernel;
+}
+
 double BlockMatrix::plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o,
                               int begin, int end) const {
 #ifdef LAMINA_AVX_BLOCKS
   static const bool avx = __builtin_cpu_supports("avx");
-  if (avx)
+  if (avx && g_kernel == BlockKernel::Fastest)
     return plainRowsAvx(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
 #endif
   return plainRowsScalar(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);

@@ -47,9 +47,19 @@ void toPlanar(const double* a, double* p, int n, int i0, int i1);
 /// Copies nodes [@p i0, @p i1) of the planar @p p into the interleaved @p a.
 void fromPlanar(const double* p, double* a, int n, int i0, int i1);
 
+/// Which code computes the plain-block product (unstructured meshes).
+enum class BlockKernel {
+  Fastest, ///< AVX when the CPU has it, else Scalar (the default)
+  Scalar   ///< the portable loop a CPU without AVX runs (same bits)
+};
+
 /// 3x3-block compressed sparse rows.
 class BlockMatrix {
 public:
+  /// Chooses the plain-block kernel of every BlockMatrix of the process
+  /// (tests compare the two on a CPU that has AVX; not thread-safe against
+  /// products running at the same time).
+  static void useKernel(BlockKernel kernel);
   BlockMatrix() = default;
   /// Copies @p A (3n x 3n, full 3x3 blocks); @p share_rows = false keeps
   /// the plain blocks even on a repeated stencil (benchmarks, tests).
