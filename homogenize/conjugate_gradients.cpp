@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/interrupt.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -49,6 +50,9 @@ CgResult conjugateGradients(CgProblem& problem, const CgControl& control,
   CgResult res;
   res.residual = relativeResidual(rz, control);
   while (rz > control.rz_stop) {
+    // a safe point: under an InterruptGuard (the Python module's long
+    // calls) Ctrl-C stops the solve here; without one this never throws
+    core::throwIfInterrupted("homogenization");
     if (res.iterations >= control.max_iterations)
       notConverged(control, res.residual);
     const double pw = problem.applyToDirection();

@@ -20,7 +20,9 @@
 /// scale (relative to the applied load). Failures: lamina::Error when
 /// max_iterations is reached before convergence; lamina::DivergenceError
 /// when p^T A p is not positive or not finite (NaN/Inf, or an operator that
-/// is not positive definite) or r^T z is not finite.
+/// is not positive definite) or r^T z is not finite; lamina::Interrupted
+/// (core::throwIfInterrupted) before an iteration when an interrupt was
+/// requested (an InterruptGuard's signal: the Python module's Ctrl-C).
 
 #include <functional>
 
@@ -34,10 +36,10 @@ struct CgResult {
 
 /// When conjugate gradients stop, and how their residual is reported.
 struct CgControl {
-  double scale = 1;        ///< the residual reported is sqrt(max(r^T z, 0) / scale)
-  double rz_stop = 0;      ///< converged when r^T z <= rz_stop
-  double tol = 0;          ///< the relative residual rz_stop stands for (messages)
-  int max_iterations = 0;  ///< reaching it unconverged is an error
+  double scale = 1;       ///< the residual reported is sqrt(max(r^T z, 0) / scale)
+  double rz_stop = 0;     ///< converged when r^T z <= rz_stop
+  double tol = 0;         ///< the relative residual rz_stop stands for (messages)
+  int max_iterations = 0; ///< reaching it unconverged is an error
 
   /// Stop at relative residual @p tol: rz_stop = tol^2 scale.
   static CgControl relative(double tol, double scale, int max_iterations);

@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "homogenize/cell_operator.hpp"
@@ -154,9 +155,12 @@ void Homogenizer::solveCases(const CellOperator& A, const StartResidual& b, cons
     };
     try {
       V* xk = x.empty() ? nullptr : x[energy_form ? static_cast<std::size_t>(k) : 0].data();
-      res.cases[static_cast<std::size_t>(k)] = cg.solve(b, E, energy, opt_.tol, opt_.max_iterations, monitor, &sigma, xk);
+      res.cases[static_cast<std::size_t>(k)] =
+          cg.solve(b, E, energy, opt_.tol, opt_.max_iterations, monitor, &sigma, xk);
     } catch (const DivergenceError& e) {
       throw DivergenceError("load case " + std::to_string(k + 1) + ": " + e.message());
+    } catch (const Interrupted&) {
+      throw; // a stop, not an error of this case: keeps its type
     } catch (const Error& e) {
       throw Error("load case " + std::to_string(k + 1) + ": " + e.message());
     }

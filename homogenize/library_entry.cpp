@@ -132,14 +132,15 @@ void checkDispersion(const micro::CellSpec& spec) {
     return;
   for (const micro::Phase& p : spec.phases)
     if (p.isVoid())
-      throw Error("phase '" + p.name + "' is void (a pore) and the cell has a size: the "
-                  "dispersion tensor (micro-inertia) needs the displacement in every voxel, "
-                  "which a pore leaves undetermined; leave size out for a porous cell",
+      throw Error("phase '" + p.name +
+                      "' is void (a pore) and the cell has a size: the "
+                      "dispersion tensor (micro-inertia) needs the displacement in every voxel, "
+                      "which a pore leaves undetermined; leave size out for a porous cell",
                   {spec.file, 0, "cell.size"});
 }
 
-/// Refuses, for a library entry, the singular C of a porous cell whose solid
-/// does not span it (void layers, solid inclusions in a void matrix).
+} // namespace
+
 void checkPercolates(const micro::CellSpec& spec, const materials::Stiffness& C) {
   for (const micro::Phase& p : spec.phases)
     if (p.isVoid() && !C.valid())
@@ -148,8 +149,6 @@ void checkPercolates(const micro::CellSpec& spec, const materials::Stiffness& C)
                       "direction",
                   {spec.file, 0, "phases"});
 }
-
-} // namespace
 
 EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& cell,
                            const std::string& name, double J, const Options& options,
@@ -190,7 +189,7 @@ EntryResult homogenizeCell(const micro::CellSpec& spec, const micro::UnitCell& c
   // the dispersion tensor is accumulated on rank 0 from the gathered fields
   std::optional<DispersionAccumulator> acc;
   if (spec.physical_size && d.rank() == 0)
-    acc.emplace(grid, cell.phase, density);
+    acc.emplace(grid, cell.phase.toVector(), density); // read in the constructor only
   if (spec.physical_size)
     h.setDisplacementSink([&](int k, const double* u) {
       if (!d.distributed()) {
@@ -237,7 +236,7 @@ homogenizeIntoLibrary(const micro::CellSpec& spec, const micro::UnitCell& cell,
     const double J = states[s];
     EntryResult e = homogenizeCell(spec, cell, entry_names[s], J, options, &d);
     checkPercolates(spec, e.result.C); // a library entry's C is positive definite
-    if (d.rank() == 0) // one writer
+    if (d.rank() == 0)                 // one writer
       // The phase map goes to an HDF5 side file beside the library (DESIGN.md:
       // large arrays never enter the text file), written in the same
       // transaction as the entry that names it: an entry never points at a

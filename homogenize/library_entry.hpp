@@ -39,6 +39,12 @@ materials::Material makeEntry(const std::string& name, const micro::CellSpec& sp
                               const Options& options, double J,
                               const Dispersion* dispersion = nullptr);
 
+/// Refuses (lamina::Error naming @p spec's file and `phases`), for a
+/// library entry, the singular C of a porous cell whose solid does not span
+/// it (void layers, solid inclusions in a void matrix): a library entry's C
+/// is positive definite.
+void checkPercolates(const micro::CellSpec& spec, const materials::Stiffness& C);
+
 /// One homogenized entry: its name, matrix state and result.
 struct EntryResult {
   std::string name;                     ///< library entry name

@@ -4,7 +4,9 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/hdf5_file.hpp"
+#include "core/interrupt.hpp"
 #include "core/names.hpp"
+#include "core/progress.hpp"
 #include "homogenize/library_entry.hpp"
 
 #include <algorithm>
@@ -88,9 +90,10 @@ std::vector<materials::LawPtr> phaseLaws(const micro::CellSpec& spec) {
   std::vector<materials::LawPtr> laws;
   for (const micro::Phase& p : spec.phases) {
     if (p.isVoid())
-      throw Error("phase '" + p.name + "' is void (a pore): nonlinear runs (--path, "
-                  "--tangent-rates) take cells whose every phase has a stiffness; the linear "
-                  "homogenization (no --path) handles pores",
+      throw Error("phase '" + p.name +
+                      "' is void (a pore): nonlinear runs (--path, "
+                      "--tangent-rates) take cells whose every phase has a stiffness; the linear "
+                      "homogenization (no --path) handles pores",
                   {spec.file, 0, "phases.law"});
     laws.push_back(p.model);
   }
@@ -119,7 +122,7 @@ std::vector<StepResult> runPath(const micro::CellSpec& spec, const micro::UnitCe
                  " is outside the history (1..", history.steps.size(), ")");
   for (const std::filesystem::path& f : pathOutputs(out, !field_steps.empty()))
     core::checkReplaceable(f, "--out"); // before the run, not after it
-  NonlinearHomogenizer h(gridOf(cell), cell.phase, phaseLaws(spec), options);
+  NonlinearHomogenizer h(gridOf(cell), cell.phase.toVector(), phaseLaws(spec), options);
   std::unique_ptr<core::H5File> fields;
   const std::filesystem::path h5 = beside(out, "-fields.h5");
   // the fields are written aside and renamed into place with the CSVs: a
@@ -137,15 +140,21 @@ std::vector<StepResult> runPath(const micro::CellSpec& spec, const micro::UnitCe
     LAMINA_CHECK(!out.empty(), "fields need an output file (--out)");
     fields = std::make_unique<core::H5File>(h5_tmp, core::H5File::Mode::Create);
   }
+  // the steps' progress goes to an observer only (the Python module's
+  // callback): the program prints its own line per step
+  core::ProgressLine progress("path steps", static_cast<long>(history.steps.size()), true);
   auto each = [&](const StepResult& r) {
+    progress.update(r.step);
     if (fields && std::find(field_steps.begin(), field_steps.end(), r.step) != field_steps.end()) {
       writeFields(*fields, r.step, h.grid(), h.strainField(), h.stressField());
       written.emplace_back(r.step, r.t);
     }
     if (report)
       report(r);
+    core::throwIfInterrupted("homogenization"); // a safe point between steps
   };
   const std::vector<StepResult> results = h.run(history, each);
+  progress.finish();
   if (out.empty())
     return results;
   std::string csv = std::string(materials::kDriveHeader) + ",newton,krylov,residual,wall_s\n";
@@ -185,8 +194,7 @@ std::vector<std::string> checkTangentSpec(const std::string& base, const Tangent
   if (tangent.rates.empty())
     throw Error("no rate given for the tangent entries", {"", 0, "--tangent-rates"});
   if (!(tangent.increment > 0 && tangent.increment <= 1)) // a strain increment
-    throw Error("the tangent increment must be a strain in (0, 1]",
-                {"", 0, "--tangent-increment"});
+    throw Error("the tangent increment must be a strain in (0, 1]", {"", 0, "--tangent-increment"});
   if (tangent.strain > 0)
     materials::checkFinalStrain(tangent.path.path, tangent.strain, "--tangent-strain");
   else if (!(tangent.strain == 0))
@@ -212,7 +220,7 @@ void addTangentEntries(const micro::CellSpec& spec, const micro::UnitCell& cell,
   std::vector<materials::Library::Addition> additions;
   for (double rate : tangent.rates) {
     const auto t0 = std::chrono::steady_clock::now();
-    NonlinearHomogenizer h(gridOf(cell), cell.phase, phaseLaws(spec), options);
+    NonlinearHomogenizer h(gridOf(cell), cell.phase.toVector(), phaseLaws(spec), options);
     int newton = 0, krylov = 0;
     if (tangent.strain > 0) {
       const MacroHistory hist =

@@ -40,7 +40,10 @@ std::vector<std::filesystem::path> pathOutputs(const std::filesystem::path& out,
 /// per-phase average strain and stress). For each step listed in
 /// @p field_steps, the strain and stress fields go to OUT_STEM-fields.h5
 /// (datasets /step_N/eps_xx ... /step_N/sig_xz, each N1 x N2 x N3, C order)
-/// with an XDMF file beside it. @p report is called after each step.
+/// with an XDMF file beside it. @p report is called after each step; a
+/// core::ProgressLine "path steps" (quiet: its observer only) follows the
+/// steps. Under an InterruptGuard a signal stops the run (lamina::Interrupted)
+/// within a CG iteration or after a step, before any output is written.
 std::vector<StepResult> runPath(const micro::CellSpec& spec, const micro::UnitCell& cell,
                                 const PathSpec& path, const NonlinearOptions& options,
                                 const std::filesystem::path& out,

@@ -1,6 +1,7 @@
 #include "homogenize/reduced_order_builder.hpp"
 
 #include "core/error.hpp"
+#include "core/interrupt.hpp"
 #include "core/parallel.hpp"
 #include "core/progress.hpp"
 #include "core/resources.hpp"
@@ -49,10 +50,9 @@ ReducedOrderBuilder::ReducedOrderBuilder(const Grid& grid, std::vector<std::int3
                                          std::vector<materials::ReducedOrderPhase> phases,
                                          bool micro_inertia, ReducedOrderOptions options)
     : grid_(grid), phase_(std::move(phase)), phases_(std::move(phases)),
-      micro_inertia_(micro_inertia), opt_(std::move(options)),
-      threads_(opt_.threads, grid.size()) {
-  LAMINA_CHECK(phase_.size() == grid_.size(), "phase map has ", phase_.size(),
-               " voxels, the grid ", grid_.size());
+      micro_inertia_(micro_inertia), opt_(std::move(options)), threads_(opt_.threads, grid.size()) {
+  LAMINA_CHECK(phase_.size() == grid_.size(), "phase map has ", phase_.size(), " voxels, the grid ",
+               grid_.size());
   LAMINA_CHECK(opt_.tol > 0, "tolerance must be positive");
   for (const auto& p : phases_)
     L0_.push_back(p.law.make()->elasticStiffness(1.0));
@@ -133,8 +133,7 @@ void ReducedOrderBuilder::concentrations(ReducedOrderResult& res) const {
   m.phases = phases_;
   m.partition_phase = parts.phase;
   for (std::size_t a = 0; a < n; ++a)
-    m.fraction.push_back(static_cast<double>(parts.voxels[a]) /
-                         static_cast<double>(grid_.size()));
+    m.fraction.push_back(static_cast<double>(parts.voxels[a]) / static_cast<double>(grid_.size()));
   // A^(beta)(i, k) = mean over beta of feature 6 k + i (sums in voxel order)
   m.A.assign(n, materials::Matrix6::Zero());
   for (std::size_t v = 0; v < phase_.size(); ++v) {
@@ -203,6 +202,8 @@ void ReducedOrderBuilder::influenceFunctions(ReducedOrderResult& res) {
       } catch (const DivergenceError& e) {
         throw DivergenceError("partition " + std::to_string(a) + ", eigenstrain " +
                               std::to_string(J + 1) + ": " + e.message());
+      } catch (const Interrupted&) {
+        throw; // a stop, not an error of this solve: keeps its type
       } catch (const Error& e) {
         throw Error("partition " + std::to_string(a) + ", eigenstrain " + std::to_string(J + 1) +
                     ": " + e.message());
@@ -222,8 +223,8 @@ void ReducedOrderBuilder::influenceFunctions(ReducedOrderResult& res) {
               av.with_s[k];
       }
       std::ostringstream os;
-      os << "partition " << a + 1 << "/" << n << ", eigenstrain " << J + 1 << ": "
-         << r.iterations << " iterations";
+      os << "partition " << a + 1 << "/" << n << ", eigenstrain " << J + 1 << ": " << r.iterations
+         << " iterations";
       progress.update(static_cast<long>(col + 1), os.str());
     }
   }
@@ -236,8 +237,8 @@ void ReducedOrderBuilder::finish(ReducedOrderResult& res) const {
   const std::vector<std::size_t> count = voxelsPerPhase(phase_, phases_.size());
   m.density = 0;
   for (std::size_t p = 0; p < phases_.size(); ++p)
-    m.density += static_cast<double>(count[p]) / static_cast<double>(grid_.size()) *
-                 phases_[p].density;
+    m.density +=
+        static_cast<double>(count[p]) / static_cast<double>(grid_.size()) * phases_[p].density;
   if (acc_) {
     res.dispersion = acc_->result();
     m.D_lin = res.dispersion->D;

@@ -31,13 +31,15 @@ std::vector<materials::ReducedOrderPhase> reducedOrderPhases(const micro::CellSp
 void checkReducible(const micro::CellSpec& spec, const micro::UnitCell& cell) {
   for (const micro::Phase& ph : spec.phases)
     if (ph.isVoid())
-      throw Error("phase '" + ph.name + "' is void (a pore): a reduced-order cell takes cells "
-                  "whose every phase has a stiffness",
+      throw Error("phase '" + ph.name +
+                      "' is void (a pore): a reduced-order cell takes cells "
+                      "whose every phase has a stiffness",
                   {spec.file, 0, "phases.law"});
   for (const micro::Phase& ph : spec.phases)
     if (!ph.J.empty() && !(ph.J.size() == 1 && ph.J[0] == 1.0))
-      throw Error("phase '" + ph.name + "' lists gvbo states J: a reduced-order cell takes "
-                  "every phase at J = 1 (its law then follows J at every point); remove J",
+      throw Error("phase '" + ph.name +
+                      "' lists gvbo states J: a reduced-order cell takes "
+                      "every phase at J = 1 (its law then follows J at every point); remove J",
                   {spec.file, 0, "phases.J"});
   if (cell.oriented.empty())
     return;
@@ -52,7 +54,7 @@ void checkReducible(const micro::CellSpec& spec, const micro::UnitCell& cell) {
 ReducedOrderResult buildReducedOrder(const micro::CellSpec& spec, const micro::UnitCell& cell,
                                      const ReducedOrderOptions& options) {
   checkReducible(spec, cell);
-  ReducedOrderBuilder builder(gridOf(cell), cell.phase, reducedOrderPhases(spec),
+  ReducedOrderBuilder builder(gridOf(cell), cell.phase.toVector(), reducedOrderPhases(spec),
                               spec.physical_size, options);
   return builder.run();
 }
@@ -116,16 +118,14 @@ materials::Material makeReducedOrderEntry(const std::string& name, const micro::
 }
 
 ReducedOrderResult addReducedOrderEntry(const micro::CellSpec& spec, const micro::UnitCell& cell,
-                                        const std::string& name,
-                                        const ReducedOrderOptions& options,
+                                        const std::string& name, const ReducedOrderOptions& options,
                                         materials::Library& library, bool overwrite) {
   library.checkNewNames({name}, overwrite, "--name"); // before anything is computed
   ReducedOrderResult result = buildReducedOrder(spec, cell, options);
   const materials::ReducedOrderModel& model = result.model;
-  library.add(makeReducedOrderEntry(name, spec, cell, result, options), overwrite,
-              [&model](const std::filesystem::path& h5) {
-                materials::writeReducedOrderArrays(h5, model);
-              });
+  library.add(
+      makeReducedOrderEntry(name, spec, cell, result, options), overwrite,
+      [&model](const std::filesystem::path& h5) { materials::writeReducedOrderArrays(h5, model); });
   return result;
 }
 
@@ -171,7 +171,8 @@ std::string reducedOrderSummary(const std::string& name, const ReducedOrderResul
      << " s, peak memory " << core::formatBytes(c.peak_bytes) << " (influence spectra "
      << core::formatBytes(8 * c.influence_doubles) << ")\n";
   os << "state doubles per point " << stateDoublesPerPoint(m)
-     << (result.dispersion ? "" : "; no micro-inertia: the cell has no size in metres ([cell] size)")
+     << (result.dispersion ? ""
+                           : "; no micro-inertia: the cell has no size in metres ([cell] size)")
      << "\n";
   return os.str();
 }

@@ -404,7 +404,7 @@ std::vector<CompositeVoxel> findCompositeVoxels(const std::vector<Inclusion>& in
 
 VoxelMaterials voxelMaterials(const UnitCell& cell, const std::vector<materials::Stiffness>& C,
                               const std::vector<double>& density) {
-  VoxelMaterials m{cell.phase, C, density};
+  VoxelMaterials m{cell.phase.toVector(), C, density};
   // the stiffness of phase @p ph in voxel @p idx: rotated along its yarn's
   // path when the voxel is oriented (yarn_orientation.hpp), else the phase's
   auto stiffnessIn = [&](std::size_t idx, int ph) {

@@ -34,13 +34,14 @@ UnitCell buildImageCell(const CellSpec& spec) {
   for (std::size_t p = 0; p < labels.size(); ++p)
     phase_of[labels[p]] = static_cast<std::int32_t>(p);
   std::map<std::int32_t, std::size_t> orphans;
-  cell.phase.resize(img.voxels());
+  std::vector<std::int32_t>& phase = cell.phase.values();
+  phase.resize(img.voxels());
   for (std::size_t v = 0; v < img.voxels(); ++v) {
     const auto it = phase_of.find(img.value[v]);
     if (it == phase_of.end())
       ++orphans[img.value[v]];
     else
-      cell.phase[v] = it->second;
+      phase[v] = it->second;
   }
   if (!orphans.empty()) {
     std::string list, owned;

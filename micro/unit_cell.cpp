@@ -215,23 +215,22 @@ UnitCell buildCell(const CellSpec& spec, std::array<int, 3> n) {
   cell.inclusions = placeInclusions(spec, cell.target_fraction, cell.analytic_fraction);
   cell.phase = voxelize(cell.inclusions, n, spec.size);
   if (spec.composite_voxels.value_or(kCompositeVoxelsByDefault)) {
-    cell.composites = findCompositeVoxels(cell.inclusions, n, spec.size, cell.phase);
+    cell.composites = findCompositeVoxels(cell.inclusions, n, spec.size, cell.phase.values());
     // a voxel cut by a pore stays whole (its centre's phase): the laminate
     // with a void ply is singular, and on the sphere cell it took 50-200
     // times the iterations and came out 25 % softer than the staircase at
     // 16^3 (docs/homogenize-solver.md, "Pores")
     auto pore = [&](int ph) { return spec.phases[static_cast<std::size_t>(ph)].isVoid(); };
-    cell.composites.erase(std::remove_if(cell.composites.begin(), cell.composites.end(),
-                                         [&](const CompositeVoxel& v) {
-                                           return pore(v.inside) || pore(v.outside);
-                                         }),
-                          cell.composites.end());
+    cell.composites.erase(
+        std::remove_if(cell.composites.begin(), cell.composites.end(),
+                       [&](const CompositeVoxel& v) { return pore(v.inside) || pore(v.outside); }),
+        cell.composites.end());
   }
   std::vector<bool> anisotropic; // the phases a rotation changes
   for (const Phase& ph : spec.phases)
     anisotropic.push_back(!ph.isotropic());
-  cell.oriented =
-      orientYarnVoxels(cell.inclusions, anisotropic, n, spec.size, cell.phase, cell.composites);
+  cell.oriented = orientYarnVoxels(cell.inclusions, anisotropic, n, spec.size, cell.phase.values(),
+                                   cell.composites);
   cell.countFractions();
   return cell;
 }

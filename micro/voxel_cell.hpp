@@ -8,6 +8,7 @@
 /// voxels) and the homogenizer reads it.
 
 #include "micro/inclusion.hpp"
+#include "micro/phase_map.hpp"
 
 #include <Eigen/Dense>
 
@@ -52,9 +53,11 @@ const Voxel* findVoxel(const std::vector<Voxel>& list, std::size_t index) {
 struct UnitCell {
   std::array<int, 3> n{0, 0, 0};                  ///< voxels along x, y, z
   Eigen::Vector3d size = Eigen::Vector3d::Ones(); ///< edge lengths
-  std::vector<std::int32_t> phase;     ///< phase index per voxel, C order, x slowest: (i*n1+j)*n2+k
-  std::vector<Inclusion> inclusions;   ///< every placed inclusion
-  std::vector<double> target_fraction; ///< per group: the requested fraction (NaN if none)
+  /// phase index per voxel, C order, x slowest: (i*n1+j)*n2+k; owned, or
+  /// borrowed from memory kept alive elsewhere (phase_map.hpp)
+  PhaseMap phase;
+  std::vector<Inclusion> inclusions;      ///< every placed inclusion
+  std::vector<double> target_fraction;    ///< per group: the requested fraction (NaN if none)
   std::vector<double> analytic_fraction;  ///< per group: analytic volume / cell volume
   std::vector<double> voxel_fraction;     ///< per phase: fraction of voxels
   int phase_count = 0;                    ///< number of phases

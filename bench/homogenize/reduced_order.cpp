@@ -74,8 +74,10 @@ std::vector<std::string> split(const std::string& s) {
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    std::fprintf(stderr, "usage: %s LIBRARY ENTRY[,ENTRY...] CELL [N [THREADS [PATH [RATE [TO "
-                         "[STEPS [MIN_SECONDS]]]]]]]\n", argv[0]);
+    std::fprintf(stderr,
+                 "usage: %s LIBRARY ENTRY[,ENTRY...] CELL [N [THREADS [PATH [RATE [TO "
+                 "[STEPS [MIN_SECONDS]]]]]]]\n",
+                 argv[0]);
     return 2;
   }
   const std::string library = argv[1], cell_path = argv[3];
@@ -109,7 +111,7 @@ int main(int argc, char** argv) {
   const micro::UnitCell cell = micro::buildCell(spec, {n, n, n});
   homogenize::NonlinearOptions options;
   options.threads = threads;
-  homogenize::NonlinearHomogenizer full(homogenize::gridOf(cell), cell.phase,
+  homogenize::NonlinearHomogenizer full(homogenize::gridOf(cell), cell.phase.toVector(),
                                         homogenize::phaseLaws(spec), options);
   const auto t0 = std::chrono::steady_clock::now();
   const auto results = full.run(history);

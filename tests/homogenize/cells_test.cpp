@@ -156,8 +156,8 @@ TEST(LibraryEntry, RoundTripsWithProvenance) {
   const micro::UnitCell cell = micro::buildCell(spec, {12, 12, 12});
   homogenize::Options opt;
   opt.tol = 1e-6;
-  homogenize::Homogenizer h(homogenize::gridOf(cell), cell.phase, spec.stiffnessesAt(1.0),
-                            spec.densities(), opt);
+  homogenize::Homogenizer h(homogenize::gridOf(cell), cell.phase.toVector(),
+                            spec.stiffnessesAt(1.0), spec.densities(), opt);
   const auto r = h.run();
   EXPECT_NEAR(r.density, 1100.0, 1e-9);
   const auto dir = std::filesystem::temp_directory_path() /

@@ -168,13 +168,13 @@ TEST(NonlinearHomogenization, InfiniteRateTangentIsLinearC) {
     laws.push_back(ph.model);
   hom::NonlinearOptions o = tight();
   o.tol = 1e-8;
-  hom::NonlinearHomogenizer h(hom::gridOf(cell), cell.phase, laws, o);
+  hom::NonlinearHomogenizer h(hom::gridOf(cell), cell.phase.toVector(), laws, o);
   const mat::Matrix6 Ct = h.effectiveTangent(0.0);
   hom::Options lo;
   lo.tol = 1e-8;
   lo.threads = 1;
-  hom::Homogenizer lin(hom::gridOf(cell), cell.phase, spec.stiffnessesAt(1.0), spec.densities(),
-                       lo);
+  hom::Homogenizer lin(hom::gridOf(cell), cell.phase.toVector(), spec.stiffnessesAt(1.0),
+                       spec.densities(), lo);
   const mat::Matrix6 C = lin.run().C.matrix();
   EXPECT_LE((0.5 * (Ct + Ct.transpose()) - C).cwiseAbs().maxCoeff(), 1e-6 * C.cwiseAbs().maxCoeff())
       << "nonlinear\n"

@@ -71,8 +71,8 @@ TEST(Pores, VoidLaminateMatchesExactFormula) {
     const auto r = homogenizeMap(n, map, {solid, pore}, 1e-10, {1000.0, 0.0});
     const Matrix6 exact = voidLaminate(solid.matrix(), 5.0 / 12, axis);
     EXPECT_LT(relDiff(r.C.matrix(), exact), 1e-8) << "axis " << axis << "\n"
-                                                   << r.C.matrix() << "\n\n"
-                                                   << exact;
+                                                  << r.C.matrix() << "\n\n"
+                                                  << exact;
     EXPECT_NEAR(r.density, 1000.0 * 5 / 12, 1e-9);
     EXPECT_LT(r.maxResidual(), 1e-10);
   }
@@ -129,7 +129,8 @@ TEST(Pores, DiagonalVoidLayerIsExactWithCompositeVoxels) {
   // ply are formed here as they would be for two solids
   micro::UnitCell cell = micro::buildCell(spec);
   EXPECT_TRUE(cell.composites.empty());
-  cell.composites = micro::findCompositeVoxels(cell.inclusions, cell.n, spec.size, cell.phase);
+  cell.composites =
+      micro::findCompositeVoxels(cell.inclusions, cell.n, spec.size, cell.phase.values());
   ASSERT_FALSE(cell.composites.empty());
   homogenize::Options o;
   o.tol = 1e-9;
@@ -192,8 +193,8 @@ TEST(Pores, PorousSphereBelowHashinShtrikmanAndConverging) {
   }
   for (const auto& [i, j] : {std::pair{0, 0}, std::pair{3, 3}}) {
     const double d1 = std::abs(C[1](i, j) - C[0](i, j)), d2 = std::abs(C[2](i, j) - C[1](i, j));
-    EXPECT_LT(d2, d1) << "C" << i + 1 << j + 1 << ": " << C[0](i, j) << ", " << C[1](i, j)
-                      << ", " << C[2](i, j);
+    EXPECT_LT(d2, d1) << "C" << i + 1 << j + 1 << ": " << C[0](i, j) << ", " << C[1](i, j) << ", "
+                      << C[2](i, j);
   }
 }
 
