@@ -1,5 +1,5 @@
 # Type stubs of the package lamina: the contract of the Python module.
-# Units SI; 6x6 and 6-vectors in lamina's order xx, yy, zz, yz, xz, xy
+# Units SI; 6x6 and 6-vectors in lamina's order xx, yy, zz, xy, yz, xz
 # (engineering shear strains). Long calls (homogenize, homogenize_path,
 # drive, membrane.run) release the GIL, take progress(done, total, label)
 # and stop on Ctrl-C with KeyboardInterrupt.
@@ -38,7 +38,9 @@ class Cell:
         catalog, E, nu, density...). `size`: edge lengths in metres (None:
         a scale-free cell of edge 1, no dispersion). The array is used
         without a copy when it is int32, C-contiguous and its ids are
-        0..P-1 in the dict; otherwise it is copied (Cell.copied says which)."""
+        0..P-1 in the dict; otherwise it is copied (Cell.copied says which).
+        A cell using the array in place reads it: homogenize refuses a cell
+        whose array changed since."""
     def phase_map(self) -> npt.NDArray[np.int32]:
         """The phase index per voxel, shape resolution, axis 0 = x; a
         read-only view of the cell's own array (no copy)."""
@@ -73,15 +75,17 @@ class HomogenizeResult:
 def homogenize(cell: Cell, tol: Optional[float] = None, threads: Optional[int] = None,
                J: float = 1.0, progress: Progress = None) -> HomogenizeResult:
     """Effective stiffness, density and (cells with a size) dispersion
-    tensor; the same solve as `homogenize CELL` (its defaults)."""
+    tensor; the same solve as `homogenize CELL` (its defaults). J: the
+    state of a gvbo phase (a cell file's list of J states is the program's
+    sweep, one entry per J; here one J per call)."""
 
 def homogenize_path(cell: Cell, path: str = "uniaxial-strain", rate: float = 1e4,
                     to: float = 0.1, steps: int = 100, unload: bool = False,
                     threads: Optional[int] = None,
                     progress: Progress = None) -> Dict[str, npt.NDArray[np.float64]]:
     """The nonlinear cell along a strain path (`homogenize CELL --path`):
-    column -> array, the columns of its CSV (t, eps_xx..eps_xy,
-    sig_xx..sig_xy, newton, krylov, residual, wall_s)."""
+    column -> array, the columns of its CSV (t, eps_xx..eps_xz,
+    sig_xx..sig_xz, newton, krylov, residual, wall_s)."""
 
 def drive(material: Union[str, Mapping[str, object]], path: str = "uniaxial-strain",
           rate: float = 1.0, to: float = 0.1, steps: int = 200, unload: bool = False,
