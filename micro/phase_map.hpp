@@ -32,7 +32,8 @@ public:
   /// An owned map holding @p values (implicit: a builder's vector becomes the map).
   PhaseMap(std::vector<std::int32_t> values); // NOLINT(google-explicit-constructor)
   /// A map reading @p size values at @p data without a copy; @p keeper keeps
-  /// that memory alive (released when the last map borrowing it goes).
+  /// that memory alive (released when the last map borrowing it goes; null:
+  /// the caller keeps the memory alive for as long as a map reads it).
   static PhaseMap borrow(const std::int32_t* data, std::size_t size,
                          std::shared_ptr<const void> keeper);
 

@@ -43,6 +43,10 @@ def test_a_raising_callback_stops_the_call(source_dir, which):
     with pytest.raises(Stop, match="enough"):
         call(progress)
     assert len(seen) == 1
+    # the stop was for that call only: the next one runs to its end
+    ends = []
+    call(lambda done, total, label: ends.append(done == total))
+    assert ends[-1]
 
 
 @pytest.mark.parametrize("which", ["homogenize", "path"])
@@ -61,6 +65,7 @@ def test_ctrl_c_stops_the_call_before_its_end(source_dir, which):
     # the line's last update (done == total) is always reported to the
     # callback; a call that ran to its end would have reported it
     assert all(done < total for done, total, _ in seen), seen
+    assert call(None) is not None  # and the next call is not stopped
 
 
 def test_progress_reaches_the_end_without_a_stop(source_dir):
