@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "materials/catalog.hpp"
+#include "materials/entries.hpp"
 #include "materials/export.hpp"
 #include "materials/layup.hpp"
 #include "materials/library.hpp"
@@ -17,8 +18,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <chrono>
-#include <ctime>
 #include <functional>
 #include <iostream>
 #include <sstream>
@@ -28,13 +27,6 @@
 namespace mat = lamina::materials;
 
 namespace {
-
-std::string nowIso() {
-  const std::time_t t = std::time(nullptr);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
-  return buf;
-}
 
 /// @return a provenance value as a person reads it: numbers with 6
 /// significant digits (the library file keeps every digit), arrays element
@@ -165,10 +157,8 @@ CLI::App* addDriveCommand(CLI::App& app, Args& a) {
       ->check(CLI::PositiveNumber)
       ->default_str("");
   cmd->add_flag("--unload", a.drive.unload, "drive back to zero strain at the same rate");
-  cmd->add_option("--steps", a.drive.steps, "time steps per leg")
-      ->check(CLI::Range(1, 100000000));
-  cmd->add_option("--kinematics", a.kinematics,
-                  "finite (rotation-free frame, J = det F) | small")
+  cmd->add_option("--steps", a.drive.steps, "time steps per leg")->check(CLI::Range(1, 100000000));
+  cmd->add_option("--kinematics", a.kinematics, "finite (rotation-free frame, J = det F) | small")
       ->check(CLI::IsMember(mat::kKinematicsNames.names()));
   cmd->add_option("--out", a.out, "CSV file to write")->required();
   cmd->add_option("--nonlinear-dispersion", a.nonlinear_dispersion,
@@ -198,8 +188,7 @@ Commands addCommands(CLI::App& app, Args& a) {
   auto* from = c.add->add_option("--from-catalog", a.from_catalog, "catalog key");
   auto* constants = c.add->add_option(
       "--constants", a.constants, "C11,C12,...,C66: upper triangle row by row, lamina order, Pa");
-  c.add->add_option("--density", a.density, "kg/m^3 (required with --constants)")
-      ->default_str("");
+  c.add->add_option("--density", a.density, "kg/m^3 (required with --constants)")->default_str("");
   c.add->add_flag("--overwrite", a.overwrite, "replace an existing entry of that name");
   from->excludes(constants);
   c.layup = app.add_subcommand("layup", "store a layup of plies as a new entry");
@@ -210,8 +199,7 @@ Commands addCommands(CLI::App& app, Args& a) {
   c.layup->add_flag("--overwrite", a.overwrite, "replace an existing entry of that name");
   c.export_card = app.add_subcommand("export", "print a card for another code");
   c.export_card->add_option("NAME", a.name, "entry name")->required();
-  c.export_card
-      ->add_option("--format", a.format, "card format (one of the names listed)")
+  c.export_card->add_option("--format", a.format, "card format (one of the names listed)")
       ->check(CLI::IsMember(mat::kExportFormatNames.names()));
   c.remove = app.add_subcommand("remove", "remove an entry");
   c.remove->add_option("NAME", a.name, "entry name")->required();
@@ -266,26 +254,22 @@ void listEntries(const Args& a, const std::filesystem::path& library) {
 
 /// `add`: the new entry, from the catalog or from 21 constants.
 mat::Material newEntry(const Args& a) {
-  mat::Material m;
-  if (!a.from_catalog.empty()) {
-    m = mat::Catalog(a.catalogFile()).get(a.from_catalog).toMaterial();
-    m.provenance.insert("catalog_key", a.from_catalog);
-  } else if (!a.constants.empty()) {
-    if (!(a.density > 0))
-      throw lamina::Error(a.density == 0 ? "--density (kg/m^3) is required with --constants"
-                                         : "density must be > 0 (kg/m^3)",
-                          {"--density", 0, ""});
-    m.C = mat::Stiffness::fromUpperTriangle(parseConstants(a.constants));
-    m.density = a.density;
-    m.kind = "constants";
-    m.provenance.insert("input", a.constants);
-  } else {
+  if (!a.from_catalog.empty())
+    return mat::catalogEntry(mat::Catalog(a.catalogFile()), a.from_catalog, a.name,
+                             "materials add");
+  if (a.constants.empty())
     throw lamina::Error("give --from-catalog KEY or --constants C11,...,C66", {"add", 0, ""});
-  }
+  if (!(a.density > 0))
+    throw lamina::Error(a.density == 0 ? "--density (kg/m^3) is required with --constants"
+                                       : "density must be > 0 (kg/m^3)",
+                        {"--density", 0, ""});
+  mat::Material m;
+  m.C = mat::Stiffness::fromUpperTriangle(parseConstants(a.constants));
+  m.density = a.density;
+  m.kind = "constants";
+  m.provenance.insert("input", a.constants);
   m.name = a.name;
-  m.provenance.insert("program", "materials add");
-  m.provenance.insert("version", LAMINA_VERSION);
-  m.provenance.insert("time", nowIso());
+  mat::stampProvenance(m, "materials add");
   return m;
 }
 
@@ -295,11 +279,7 @@ void addLayup(const Args& a, const std::filesystem::path& library) {
   for (const auto& p : a.plies)
     stack.push_back(mat::parsePly(p));
   mat::MaterialSource source(library.string(), a.shared.catalog);
-  mat::Material m =
-      mat::makeLayup(a.name, stack, [&](const std::string& n) { return source.get(n); });
-  m.provenance.insert("program", "materials layup");
-  m.provenance.insert("version", LAMINA_VERSION);
-  m.provenance.insert("time", nowIso());
+  const mat::Material m = mat::layupEntry(a.name, stack, source, "materials layup");
   mat::Library(library).add(m, a.overwrite);
   std::cerr << "added layup '" << a.name << "' (" << stack.size() << " plies, "
             << lamina::core::formatShort(*m.thickness) << " m) to " << library.string() << "\n";
@@ -369,18 +349,12 @@ void driveEntry(Args a, const std::filesystem::path& library) {
             << "\n";
 }
 
-/// What `show` adds for a reduced-order entry: per phase its law, density
-/// and partitions, and the state per point (reads the side file).
-void showReducedOrder(const mat::Library& lib, const mat::Material& m, nlohmann::json* json) {
+/// What `show` adds on screen for a reduced-order entry: per phase its law,
+/// density and partitions, and the state per point (reads the side file;
+/// the JSON view is mat::showJson's).
+void showReducedOrder(const mat::Library& lib, const mat::Material& m) {
   const mat::ReducedOrderLaw law(m.name, mat::readReducedOrderEntry(lib, m));
   const std::vector<int> count = law.model().partitionsPerPhase();
-  if (json) {
-    for (std::size_t p = 0; p < m.phases.size(); ++p)
-      (*json)["phases"][p]["partitions"] = count[p];
-    (*json)["state_doubles"] = law.stateSize();
-    (*json)["nonlinear_partitions"] = law.nonlinearPartitions().size();
-    return;
-  }
   std::cout << "  phases (law, density, partitions):\n";
   for (std::size_t p = 0; p < m.phases.size(); ++p) {
     const mat::ReducedOrderPhase& ph = m.phases[p];
@@ -401,17 +375,13 @@ void showReducedOrder(const mat::Library& lib, const mat::Material& m, nlohmann:
 void showEntry(const Args& a, const std::filesystem::path& path) {
   const mat::Library lib(path);
   const mat::Material& m = lib.get(a.name);
-  const bool reduced = m.kind == mat::kReducedOrderKind;
   if (a.shared.json) {
-    nlohmann::json j = mat::materialToJson(m);
-    if (reduced)
-      showReducedOrder(lib, m, &j);
-    std::cout << j.dump(2) << "\n";
+    std::cout << mat::showJson(lib, m).dump(2) << "\n";
     return;
   }
   printHuman(m);
-  if (reduced)
-    showReducedOrder(lib, m, nullptr);
+  if (m.kind == mat::kReducedOrderKind)
+    showReducedOrder(lib, m);
 }
 
 /// Runs the subcommand of @p c that was given.

@@ -99,7 +99,9 @@ def drive(material: Union[str, Mapping[str, object]], path: str = "uniaxial-stra
 class Library(Mapping[str, Dict[str, object]]):
     """The materials library file: a mapping name -> entry (the fields of
     `materials show --json`, C as a 6x6 array). Writes are atomic and
-    locked, as the programs'."""
+    locked, as the programs'. Nothing is cached: every access reads the
+    file again, so a Library sees what the programs wrote after it was
+    made; a name it lacks raises KeyError naming the file."""
     def __init__(self, path: Optional[PathLike] = None,
                  catalog: Optional[PathLike] = None) -> None:
         """path None: --library's default ($LAMINA_LIBRARY, then the XDG path)."""
@@ -111,13 +113,16 @@ class Library(Mapping[str, Dict[str, object]]):
     def __len__(self) -> int: ...
     def add(self, name: str, result: HomogenizeResult, overwrite: bool = False) -> None:
         """Adds a homogenized entry with its provenance (as `homogenize --name`)."""
-    def add_from_catalog(self, name: str, catalog_name: str, overwrite: bool = False) -> None: ...
+    def add_from_catalog(self, name: str, catalog_name: str, overwrite: bool = False) -> None:
+        """Adds the catalog material `catalog_name` as entry `name` (as
+        `materials add NAME --from-catalog KEY`)."""
     def layup(self, name: str, plies: Sequence[Tuple[str, float, float]],
               overwrite: bool = False) -> None:
         """plies: (material, angle in degrees, thickness in m), bottom first."""
     def export(self, name: str, format: str = "json") -> str:
         """The text `materials export NAME --format FORMAT` prints."""
-    def remove(self, name: str) -> None: ...
+    def remove(self, name: str) -> None:
+        """Removes entry `name` (as `materials remove NAME`)."""
 
 def blast(charge: float, distance: float, burst: str = "hemispherical") -> Dict[str, float]:
     """Kingery-Bulmash parameters (`membrane blast --json`): charge in kg TNT,
