@@ -124,6 +124,7 @@ class Library(Mapping[str, Dict[str, object]]):
     def remove(self, name: str) -> None:
         """Removes entry `name` (as `materials remove NAME`)."""
 
-def blast(charge: float, distance: float, burst: str = "hemispherical") -> Dict[str, float]:
+def blast(charge: float, distance: float, burst: str = "hemispherical") -> Dict[str, object]:
     """Kingery-Bulmash parameters (`membrane blast --json`): charge in kg TNT,
-    distance in m."""
+    distance in m. The program's JSON object: the six parameters (floats, SI)
+    and the inputs, burst, validity range and decay constants."""

@@ -10,8 +10,12 @@ class Result:
     probes: Dict[str, npt.NDArray[np.float64]]  # probes.csv: column -> array
     energy: Dict[str, npt.NDArray[np.float64]]  # energy.csv
     reactions: Dict[str, npt.NDArray[np.float64]]  # reactions.csv (empty without constraints)
-    # fields at the asked times: time actually written -> field name -> array
+    # fields at the asked times: for each, the written step NEAREST to it,
+    # keyed by the time actually written -> field name -> array
     fields: Dict[float, Dict[str, npt.NDArray[np.float64]]]
+    # compare_without_drag: {"with-drag": Result, "without-drag": Result}
+    # (the case's probes/energy/reactions/fields are the run with drag); else {}
+    runs: Dict[str, "Result"]
     out: Optional[str]  # the output folder (None: a temporary one, removed)
 
 def run(case: Union[str, "os.PathLike[str]", Mapping[str, object]],
@@ -22,4 +26,6 @@ def run(case: Union[str, "os.PathLike[str]", Mapping[str, object]],
     """`membrane run`: a case file's path, or a dict with the case file's
     keys (relative paths in it are relative to the working folder). `set`:
     {"time.dt": 5e-6, ...} as --set. Interrupted (Ctrl-C): the outputs are
-    closed, summary.json says interrupted, KeyboardInterrupt is raised."""
+    closed, summary.json says interrupted, KeyboardInterrupt is raised.
+    out=None: a temporary folder, read back and removed. fields: times (s);
+    Result.fields holds the field step written nearest to each."""
