@@ -1,5 +1,5 @@
 # Type stubs of the package lamina: the contract of the Python module.
-# Units SI; 6x6 and 6-vectors in lamina's order xx, yy, zz, yz, xz, xy
+# Units SI; 6x6 and 6-vectors in lamina's order xx, yy, zz, xy, yz, xz
 # (engineering shear strains). Long calls (homogenize, homogenize_path,
 # drive, membrane.run) release the GIL, take progress(done, total, label)
 # and stop on Ctrl-C with KeyboardInterrupt.
