@@ -40,7 +40,7 @@ def version():
 
 
 def cached(build, name):
-    """The value of @name in build/CMakeCache.txt, or None."""
+    """The value of the cache entry @name (NAME:TYPE=value) in build's CMakeCache.txt, or None."""
     for line in (build / "CMakeCache.txt").read_text().splitlines():
         if line.startswith(name + ":"):
             return line.split("=", 1)[1]
@@ -70,11 +70,13 @@ class CMakeBuild(build_ext):
             source = cached(build, "CMAKE_HOME_DIRECTORY")
             print(f"lamina setup.py: reusing the build folder {build} (sources: {source})",
                   flush=True)
-        if cached(build, "LAMINA_PYTHON:BOOL") != "ON":
-            sys.exit(f"lamina setup.py: {build} builds no Python module (LAMINA_PYTHON is off: "
-                     "pybind11-dev or python3-dev missing? scripts/install-deps.sh)")
         jobs = [] if os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") else ["-j", os.cpu_count() or 1]
-        self.run_command_line(["cmake", "--build", build, "--target", "lamina_python", *jobs])
+        try:
+            self.run_command_line(["cmake", "--build", build, "--target", "lamina_python", *jobs])
+        except subprocess.CalledProcessError as e:
+            sys.exit(f"lamina setup.py: building lamina_python in {build} failed ({e}); if the "
+                     "target is unknown, CMake found no pybind11 or Python headers (Debian: "
+                     "pybind11-dev python3-dev, scripts/install-deps.sh) or LAMINA_PYTHON is OFF")
         self.pack(build / "python" / "lamina", pathlib.Path(self.get_ext_fullpath(ext.name)))
 
     def pack(self, built, extension):
