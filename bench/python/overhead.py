@@ -139,8 +139,10 @@ def copy_check(lamina, np):
     n = 128
     x = (np.arange(n) + 0.5) / n - 0.5
     inside = (x[:, None, None] ** 2 + x[None, :, None] ** 2 + x[None, None, :] ** 2) < 0.3 ** 2
-    phases = {0: {"name": "matrix", "E": 156e6, "nu": 0.494, "density": 1100.0},
-              1: {"name": "sphere", "E": 890e6, "nu": 0.491, "density": 1100.0}}
+    phases = {0: {"name": "matrix", "law": "isotropic", "E": 156e6, "nu": 0.494,
+                  "density": 1100.0},
+              1: {"name": "sphere", "law": "isotropic", "E": 890e6, "nu": 0.491,
+                  "density": 1100.0}}
     base = np.ascontiguousarray(inside, dtype=np.int32)
     cases = {f"{np.dtype(t).name}, {o} order": np.asarray(base, dtype=t, order=o)
              for t in (np.int8, np.uint8, np.int16, np.int32, np.uint32, np.int64)
