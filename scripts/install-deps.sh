@@ -9,7 +9,7 @@ PKGS=(cmake g++ make pkg-config ninja-build
       clang libclang-rt-14-dev libomp-dev llvm
       libexpat1-dev zlib1g-dev libtiff-dev libssl-dev
       python3 python3-numpy python3-matplotlib python3-h5py universal-ctags
-      python3-dev pybind11-dev python3-pytest python3-setuptools python3-pip python3-venv)
+      python3-dev pybind11-dev python3-pytest python3-setuptools python3-wheel python3-pip python3-venv)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

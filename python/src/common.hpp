@@ -66,5 +66,8 @@ void bindHomogenize(py::module_& m); ///< homogenize.cpp: homogenize, homogenize
 void bindLibrary(py::module_& m);    ///< library.cpp: lamina.Library
 void bindLaws(py::module_& m);       ///< laws.cpp: drive
 void bindMembrane(py::module_& m);   ///< membrane.cpp: membrane.run, blast
+/// package.cpp: _default_catalog() (python/lamina/__init__.py falls back to the
+/// catalog shipped in an installed package when that path does not exist)
+void bindPackage(py::module_& m);
 
 } // namespace lamina::python

@@ -13,4 +13,5 @@ PYBIND11_MODULE(_lamina, m) {
   lamina::python::bindLibrary(m);
   lamina::python::bindLaws(m);
   lamina::python::bindMembrane(m);
+  lamina::python::bindPackage(m);
 }

@@ -11,9 +11,10 @@ unless it is listed here.
 How they run. The blocks run in README order, each as one bash script
 (errexit and pipefail, and a check after every top-level command, so a
 failing `cd X && ...` counts too), in a temporary copy of the repository:
-cases/ and scripts/ copied, build/bin a link to BUILD_DIR/bin and nothing
-else, so that a command writing into the tree (docs/images/...) fails here
-instead of overwriting a committed file. HOME and XDG_DATA_HOME point into
+cases/ and scripts/ copied, build/bin a link to BUILD_DIR/bin (and
+build/python to BUILD_DIR/python, the Python module) and nothing else, so
+that a command writing into the tree (docs/images/...) fails here instead of
+overwriting a committed file. HOME and XDG_DATA_HOME point into
 the temporary directory and LAMINA_LIBRARY and LAMINA_FFTW_WISDOM are
 unset: the library is the README's default ~/.local/share/lamina/library.toml,
 a fresh one, and the user's library is never touched. State carries from
@@ -83,6 +84,9 @@ SKIP = {
     "ctest --test-dir build -L verification": "the test suite itself, this test included",
     "make test-sanitize": "a second build and the suite under sanitizers: tens of minutes",
     "make fuzz": "a third build and 8 x 60 s of fuzzing",
+    "/usr/bin/python3 -m venv --system-site-packages .venv && .venv/bin/pip install"
+    " --no-build-isolation .": "a build of the module in build-pip/ (minutes); CI's stage"
+                              " pip-install runs it, reusing build/",
 }
 
 # Size overrides: (README text, replacement, why). Each text must occur in
@@ -353,6 +357,9 @@ def make_tree(source, build, root):
         shutil.copytree(os.path.join(source, d), os.path.join(root, d), symlinks=True)
     os.makedirs(os.path.join(root, "build"))
     os.symlink(os.path.join(os.path.abspath(build), "bin"), os.path.join(root, "build", "bin"))
+    if os.path.isdir(os.path.join(build, "python")):  # the Python module (README, "Python")
+        os.symlink(os.path.join(os.path.abspath(build), "python"),
+                   os.path.join(root, "build", "python"))
     for name, origin, drop in SETUP:
         if os.path.exists(os.path.join(root, origin)):
             with open(os.path.join(root, origin)) as f:
