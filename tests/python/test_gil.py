@@ -48,7 +48,7 @@ def assert_released(steps, duration):
 
 def test_homogenize_releases_the_gil(source_dir):
     cell = lamina.Cell.from_file(source_dir / "cases" / "cells" / "sphere.toml",
-                                 set={"cell.resolution": 24})
+                                 set={"cell.resolution": 48})
     assert_released(*steps_beside(lambda: lamina.homogenize(cell, threads=1)))
 
 

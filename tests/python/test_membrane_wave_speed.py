@@ -1,6 +1,7 @@
 """A membrane run built as a Python dict reproduces the exact wave speeds
-of the linear membrane (docs/membrane.md, "In-plane: plane strain" and
-"Out-of-plane: transverse shear stiffness"): in a strip whose other
+of the linear membrane (docs/membrane.md, "The model (what it is, and
+what it is not)": in-plane plane strain, out-of-plane transverse shear
+stiffness): in a strip whose other
 displacement components are held (a 1D problem), a step force on the left
 edge sends a front at c_P = sqrt((lambda + 2 mu)/rho) (ux) or
 c_S = sqrt(mu/rho) (uz), and behind it the particle speed of the exact
