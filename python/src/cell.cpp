@@ -31,31 +31,16 @@ namespace {
 /// The source name of an array cell in messages and provenance.
 constexpr const char* kArraySource = "<array>";
 
-std::string typeName(py::handle o) {
-  return py::str(py::type::of(o).attr("__name__"));
-}
-
-/// @return os.fspath(@p path) (a str or os.PathLike), lamina.InputError naming @p key otherwise
-std::string pathString(py::handle path, const std::string& key) {
-  try {
-    const py::object p = py::module_::import("os").attr("fspath")(path);
-    if (py::isinstance<py::str>(p))
-      return p.cast<std::string>();
-  } catch (py::error_already_set&) {
-  }
-  throwInput("expected a path (str or os.PathLike), got " + typeName(path), key);
-}
-
 /// @return the catalog provider of @p catalog (None: --catalog's default)
 micro::CatalogProvider catalogOf(py::handle catalog) {
   return micro::lazyCatalog(catalog.is_none()
                                 ? std::filesystem::path()
-                                : std::filesystem::path(pathString(catalog, "catalog")));
+                                : std::filesystem::path(pathArgument(catalog, "catalog")));
 }
 
 std::shared_ptr<CellData> fromFile(py::handle path, py::handle set, py::handle catalog) {
   auto data = std::make_shared<CellData>();
-  data->source = pathString(path, "path");
+  data->source = requiredPath(path, "path");
   const std::vector<std::string> overrides = toOverrides(set);
   const micro::CatalogProvider provider = catalogOf(catalog);
   py::gil_scoped_release release; // reading and voxelizing touch no Python object

@@ -62,8 +62,7 @@ void throwInput(const std::string& message, const std::string& key) {
 double toDouble(py::handle o, const std::string& key, bool finite) {
   if (o.is_none() || py::isinstance<py::str>(o) || py::isinstance<py::bool_>(o) ||
       !PyNumber_Check(o.ptr()))
-    throwInput("expected a number, got " + std::string(py::str(py::type::of(o).attr("__name__"))),
-               key);
+    throwInput("expected a number, got " + typeName(o), key);
   const double v = o.cast<double>();
   if (finite && !std::isfinite(v))
     throwInput("expected a finite number, got " + std::string(py::str(o)), key);
@@ -114,6 +113,45 @@ void LongCall::run(const std::function<void()>& work) {
     std::rethrow_exception(error);
   if (signal == SIGINT && main_thread)
     PyErr_SetInterrupt(); // Ctrl-C after the last safe point: KeyboardInterrupt next
+}
+
+long long toInt(py::handle o, const std::string& key) {
+  if (py::isinstance<py::bool_>(o) || !PyIndex_Check(o.ptr()))
+    throwInput("expected an integer, got " + typeName(o), key);
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(o.ptr()));
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+  if (overflow != 0)
+    throwInput("integer out of range: " + std::string(py::str(o)), key);
+  return v;
+}
+
+std::string typeName(py::handle o) {
+  return py::str(py::type::of(o).attr("__name__"));
+}
+
+std::string pathArgument(py::handle path, const std::string& key) {
+  if (path.is_none())
+    return {};
+  if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
+    throwInput("expected a path (str or os.PathLike) or None, got " + typeName(path), key);
+  const py::module_ os = py::module_::import("os");
+  const std::string text = os.attr("fsdecode")(os.attr("fspath")(path)).cast<std::string>();
+  if (text.empty())
+    throwInput("an empty path names no file (None: the default)", key);
+  return text;
+}
+
+std::string requiredPath(py::handle path, const std::string& key) {
+  if (path.is_none())
+    throwInput("expected a path (str or os.PathLike), got None", key);
+  return pathArgument(path, key);
+}
+
+std::string strArgument(py::handle name, const std::string& key) {
+  if (!py::isinstance<py::str>(name))
+    throwInput("expected a str, got " + typeName(name), key);
+  return name.cast<std::string>();
 }
 
 } // namespace lamina::python

@@ -61,6 +61,26 @@ private:
 double toDouble(py::handle o, const std::string& key, bool finite = true);
 
 /// Binders, one per source file (module.cpp calls them in this order).
+/// @return the int @p o (not a bool), raising lamina.InputError naming @p key
+/// otherwise or when it does not fit a long long
+long long toInt(py::handle o, const std::string& key);
+
+/// @return the type name of @p o (for messages: "got float")
+std::string typeName(py::handle o);
+
+/// @return @p path (a str or an os.PathLike) as a file name; None gives ""
+/// (the caller's default). Raises lamina.InputError naming @p key for
+/// another type or an empty path.
+std::string pathArgument(py::handle path, const std::string& key);
+
+/// @return @p path as pathArgument() does, but None is refused too: a
+/// path the call needs (lamina.InputError naming @p key)
+std::string requiredPath(py::handle path, const std::string& key);
+
+/// @return @p name as a str; raises lamina.InputError naming @p key when it
+/// is not a str
+std::string strArgument(py::handle name, const std::string& key);
+
 void bindCell(py::module_& m);       ///< cell.cpp: lamina.Cell
 void bindHomogenize(py::module_& m); ///< homogenize.cpp: homogenize, homogenize_path
 void bindLibrary(py::module_& m);    ///< library.cpp: lamina.Library

@@ -10,10 +10,6 @@ std::string joinKey(const std::string& where, const std::string& key) {
   return where.empty() ? key : where + "." + key;
 }
 
-std::string typeName(py::handle o) {
-  return py::str(py::type::of(o).attr("__name__"));
-}
-
 /// A numpy scalar or array as plain Python (item() / tolist()), else @p o.
 py::object plain(py::handle o) {
   if (py::hasattr(o, "dtype") && py::hasattr(o, "tolist"))

@@ -37,22 +37,6 @@ namespace {
 /// The `program` a library entry of the module records in its provenance.
 constexpr const char* kProgram = "homogenize (lamina Python module: lamina.homogenize)";
 
-std::string typeName(py::handle o) {
-  return py::str(py::type::of(o).attr("__name__"));
-}
-
-/// @return the int @p o (not a bool), raising lamina.InputError naming @p key otherwise
-long long toInt(py::handle o, const std::string& key) {
-  if (py::isinstance<py::bool_>(o) || !PyIndex_Check(o.ptr()))
-    throwInput("expected an integer, got " + typeName(o), key);
-  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(o.ptr()));
-  int overflow = 0;
-  const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
-  if (overflow != 0)
-    throwInput("integer out of range: " + std::string(py::str(o)), key);
-  return v;
-}
-
 /// @return the solver threads of @p threads (None: the programs' default, 0 = auto)
 int threadsOf(py::handle threads) {
   if (threads.is_none())

@@ -7,7 +7,6 @@
 /// read by the law reader of cell phases and case sections (readLawSpec),
 /// the same materials::drive, and its rows as the columns of the CSV.
 #include "python/src/convert.hpp"
-#include "python/src/library.hpp"
 
 #include "core/interrupt.hpp"
 #include "core/progress.hpp"
@@ -42,16 +41,10 @@ struct DriveRequest {
 
 /// @return @p steps as the CLI's --steps takes it: an int in [1, 1e8]
 int stepsArgument(py::handle steps) {
-  if (py::isinstance<py::bool_>(steps) || !PyIndex_Check(steps.ptr()))
-    throwInput("expected an int, got " + std::string(py::str(py::type::of(steps).attr("__name__"))),
-               "steps");
-  const py::int_ value = py::reinterpret_steal<py::int_>(PyNumber_Index(steps.ptr()));
-  const py::int_ lo(1), hi(100000000);
-  if (value < lo || value > hi)
-    throwInput("steps per leg must be in [1, 100000000], got " +
-                   py::repr(value).cast<std::string>(),
-               "steps");
-  return value.cast<int>();
+  const long long value = toInt(steps, "steps");
+  if (value < 1 || value > 100000000)
+    throwInput("steps per leg must be in [1, 100000000], got " + std::to_string(value), "steps");
+  return static_cast<int>(value);
 }
 
 /// The law of a dict: readLawSpec over its TOML form; a key no law reads is
@@ -102,7 +95,7 @@ DriveRequest driveRequest(py::handle material, py::handle path, py::handle rate,
   } else {
     throwInput("expected a material name (str) or a dict of law keys (law = \"gvbo\", E, nu, "
                "...), got " +
-                   std::string(py::str(py::type::of(material).attr("__name__"))),
+                   typeName(material),
                kMaterialKey);
   }
   return r;

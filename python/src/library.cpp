@@ -7,7 +7,6 @@
 /// after it was made. Reads are those of `materials show --json`
 /// (materials::showJson); writes are the programs' transactions
 /// (materials::Library::add and remove: locked, atomic, checked).
-#include "python/src/library.hpp"
 
 #include "python/src/convert.hpp"
 #include "python/src/homogenize.hpp"
@@ -108,7 +107,7 @@ std::vector<mat::Ply> pliesArgument(py::handle plies) {
   };
   if (!sequence(plies))
     throwInput("plies must be a sequence of (material, angle_deg, thickness_m) tuples, got " +
-                   std::string(py::str(py::type::of(plies).attr("__name__"))),
+                   typeName(plies),
                "plies");
   std::vector<mat::Ply> out;
   std::size_t i = 0;
@@ -196,27 +195,6 @@ void bindMapping(py::class_<PyLibrary>& cls) {
 }
 
 } // namespace
-
-std::string pathArgument(py::handle path, const std::string& key) {
-  if (path.is_none())
-    return {};
-  if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
-    throwInput("expected a path (str or os.PathLike) or None, got " +
-                   std::string(py::str(py::type::of(path).attr("__name__"))),
-               key);
-  const py::module_ os = py::module_::import("os");
-  const std::string text = os.attr("fsdecode")(os.attr("fspath")(path)).cast<std::string>();
-  if (text.empty())
-    throwInput("an empty path names no file (None: the default)", key);
-  return text;
-}
-
-std::string strArgument(py::handle name, const std::string& key) {
-  if (!py::isinstance<py::str>(name))
-    throwInput("expected a str, got " + std::string(py::str(py::type::of(name).attr("__name__"))),
-               key);
-  return name.cast<std::string>();
-}
 
 void bindLibrary(py::module_& m) {
   py::class_<PyLibrary> cls(m, "Library",

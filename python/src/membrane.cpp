@@ -66,7 +66,7 @@ PreparedCase prepareCase(py::handle case_obj, const std::vector<std::string>& ov
     path = py::module_::import("os").attr("fspath")(case_obj);
   } catch (py::error_already_set&) {
     throwInput("case must be a case file's path (str or os.PathLike) or a dict of its keys, got " +
-                   std::string(py::str(py::type::of(case_obj).attr("__name__"))),
+                   typeName(case_obj),
                "case");
   }
   if (!py::isinstance<py::str>(path))
