@@ -38,7 +38,8 @@ micro::CatalogProvider catalogOf(py::handle catalog) {
                                 : std::filesystem::path(pathArgument(catalog, "catalog")));
 }
 
-std::shared_ptr<CellData> fromFile(py::handle path, py::handle set, py::handle catalog) {
+std::shared_ptr<CellData> fromFile(hint::Path path, hint::Overrides set,
+                                   hint::OptionalPath catalog) {
   auto data = std::make_shared<CellData>();
   data->source = requiredPath(path, "path");
   const std::vector<std::string> overrides = toOverrides(set);
@@ -371,8 +372,8 @@ std::string arrayDescription(const CellData& d, const Labels& l, const std::stri
   return os.str() + document;
 }
 
-std::shared_ptr<CellData> fromArray(py::handle labels, py::handle phases, py::handle size,
-                                    py::handle catalog) {
+std::shared_ptr<CellData> fromArray(hint::Labels labels, hint::Phases phases, hint::Size size,
+                                    hint::OptionalPath catalog) {
   auto data = std::make_shared<CellData>();
   data->source = kArraySource;
   const PhaseDicts dicts = phaseDicts(phases);

@@ -14,6 +14,7 @@
 /// lamina::ErrorContext; str() is the line the programs print.
 
 #include "core/error.hpp"
+#include "python/src/hints.hpp"
 
 #include <pybind11/pybind11.h>
 

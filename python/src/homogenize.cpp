@@ -94,8 +94,9 @@ py::object tomlToPython(const toml::node& n) {
   return py::str(os.str());
 }
 
-std::shared_ptr<HomogenizeData> homogenizeCell(py::handle cell, py::handle tol, py::handle threads,
-                                               py::handle J, py::handle progress) {
+std::shared_ptr<HomogenizeData> homogenizeCell(hint::CellArg cell, hint::OptionalFloat tol,
+                                               hint::OptionalInt threads, hint::Float J,
+                                               hint::Progress progress) {
   const std::shared_ptr<const CellData> c = cellData(cell);
   checkUnchanged(*c);
   homogenize::Options opt; // the program's defaults (--fftw-plan auto, --estimate energy...)
@@ -179,9 +180,9 @@ py::dict pathColumns(const std::vector<homogenize::StepResult>& steps) {
   return out;
 }
 
-py::dict homogenizePath(py::handle cell, py::handle path, py::handle rate, py::handle to,
-                        py::handle steps, py::handle unload, py::handle threads,
-                        py::handle progress) {
+py::dict homogenizePath(hint::CellArg cell, hint::Str path, hint::Float rate, hint::Float to,
+                        hint::Int steps, hint::Bool unload, hint::OptionalInt threads,
+                        hint::Progress progress) {
   const std::shared_ptr<const CellData> c = cellData(cell);
   checkUnchanged(*c);
   const homogenize::PathSpec spec = pathSpecOf(path, rate, to, steps, unload);

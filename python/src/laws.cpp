@@ -161,9 +161,9 @@ py::dict driveColumns(const std::vector<mat::DriveRow>& rows) {
   return out;
 }
 
-py::dict drivePy(py::handle material, py::handle path, py::handle rate, py::handle to,
-                 py::handle steps, bool unload, py::handle kinematics, py::handle library,
-                 py::handle catalog, py::object progress) {
+py::dict drivePy(hint::Material material, hint::Str path, hint::Float rate, hint::Float to,
+                 hint::Int steps, bool unload, hint::Str kinematics, hint::OptionalPath library,
+                 hint::OptionalPath catalog, hint::Progress progress) {
   const DriveRequest request =
       driveRequest(material, path, rate, to, steps, unload, kinematics, library, catalog);
   LongCall call(std::move(progress));

@@ -85,7 +85,7 @@ py::dict entryDict(const mat::Library& library, const mat::Material& m) {
 }
 
 /// lib[name]: the entry, or KeyError naming it and the library file.
-py::dict getItem(const PyLibrary& self, py::handle name) {
+py::dict getItem(const PyLibrary& self, hint::Str name) {
   if (!py::isinstance<py::str>(name))
     throw py::key_error(py::repr(name).cast<std::string>());
   const mat::Library library = self.load();
@@ -128,8 +128,7 @@ std::vector<mat::Ply> pliesArgument(py::handle plies) {
 }
 
 /// Library.add_from_catalog: `materials add NAME --from-catalog KEY`.
-void addFromCatalog(const PyLibrary& self, py::handle name, py::handle catalog_name,
-                    bool overwrite) {
+void addFromCatalog(const PyLibrary& self, hint::Str name, hint::Str catalog_name, bool overwrite) {
   const std::string n = strArgument(name, "name");
   const std::string key = strArgument(catalog_name, "catalog_name");
   const mat::Catalog catalog(self.catalogFile());
@@ -137,7 +136,7 @@ void addFromCatalog(const PyLibrary& self, py::handle name, py::handle catalog_n
 }
 
 /// Library.layup: `materials layup NAME --ply M:A:T ...`.
-void addLayup(const PyLibrary& self, py::handle name, py::handle plies, bool overwrite) {
+void addLayup(const PyLibrary& self, hint::Str name, hint::Plies plies, bool overwrite) {
   const std::string n = strArgument(name, "name");
   const std::vector<mat::Ply> stack = pliesArgument(plies);
   mat::MaterialSource source(self.path().string(), self.catalog());
@@ -146,7 +145,7 @@ void addLayup(const PyLibrary& self, py::handle name, py::handle plies, bool ove
 }
 
 /// Library.export: `materials export NAME --format FORMAT`.
-std::string exportEntry(const PyLibrary& self, py::handle name, py::handle format) {
+std::string exportEntry(const PyLibrary& self, hint::Str name, hint::Str format) {
   const std::string n = strArgument(name, "name");
   const mat::ExportFormat f = mat::kExportFormatNames.parseOrThrow(
       strArgument(format, "format"), "export format", {"", 0, "format"});
@@ -159,7 +158,7 @@ void bindMapping(py::class_<PyLibrary>& cls) {
   cls.def("__getitem__", &getItem, py::arg("name"))
       .def(
           "__contains__",
-          [](const PyLibrary& self, py::handle name) {
+          [](const PyLibrary& self, py::object name) {
             return py::isinstance<py::str>(name) && self.load().contains(name.cast<std::string>());
           },
           py::arg("name"))
@@ -168,7 +167,7 @@ void bindMapping(py::class_<PyLibrary>& cls) {
       .def("__len__", [](const PyLibrary& self) { return self.load().names().size(); })
       .def(
           "get",
-          [](const PyLibrary& self, py::handle name, py::object fallback) -> py::object {
+          [](const PyLibrary& self, py::object name, py::object fallback) -> py::object {
             if (!py::isinstance<py::str>(name))
               return fallback;
             const mat::Library library = self.load();
@@ -203,7 +202,7 @@ void bindLibrary(py::module_& m) {
                             "locked, as the programs'. Nothing is cached: every access reads the\n"
                             "file again, so a Library sees what the programs wrote after it was\n"
                             "made; a name it lacks raises KeyError naming the file.");
-  cls.def(py::init([](py::handle path, py::handle catalog) {
+  cls.def(py::init([](hint::OptionalPath path, hint::OptionalPath catalog) {
             return PyLibrary(pathArgument(path, "path"), pathArgument(catalog, "catalog"));
           }),
           py::arg("path") = py::none(), py::arg("catalog") = py::none(),
@@ -212,7 +211,7 @@ void bindLibrary(py::module_& m) {
   bindMapping(cls);
   cls.def(
          "add",
-         [](const PyLibrary& self, py::handle name, py::handle result, bool overwrite) {
+         [](const PyLibrary& self, hint::Str name, hint::ResultArg result, bool overwrite) {
            mat::Library library = self.load();
            addHomogenized(result, library, strArgument(name, "name"), overwrite);
          },
@@ -228,7 +227,7 @@ void bindLibrary(py::module_& m) {
            "The text `materials export NAME --format FORMAT` prints.")
       .def(
           "remove",
-          [](const PyLibrary& self, py::handle name) {
+          [](const PyLibrary& self, hint::Str name) {
             self.load().remove(strArgument(name, "name"));
           },
           py::arg("name"), "Removes entry `name` (as `materials remove NAME`).");

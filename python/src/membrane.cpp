@@ -91,8 +91,8 @@ void checkOutputFolder(const std::filesystem::path& out, const std::filesystem::
 }
 
 /// _membrane_run(case, set, out, threads, progress) -> summary dict.
-py::object membraneRun(py::handle case_obj, py::handle set, const std::string& out,
-                       py::handle threads_obj, py::object progress) {
+py::object membraneRun(hint::Case case_obj, hint::Overrides set, const std::string& out,
+                       hint::OptionalInt threads_obj, hint::Progress progress) {
   const std::vector<std::string> overrides = toOverrides(set);
   int threads = 0;
   if (!threads_obj.is_none()) {
@@ -132,7 +132,7 @@ py::array_t<double> readH5(const std::string& path, const std::string& dataset) 
 }
 
 /// blast(charge, distance, burst) -> `membrane blast --json`'s object.
-py::object blast(py::handle charge, py::handle distance, const std::string& burst_name) {
+py::object blast(hint::Float charge, hint::Float distance, const std::string& burst_name) {
   // the library refuses non-positive and non-finite values with its own
   // messages; the conversion only refuses what is no number
   const double w = toDouble(charge, "charge", /*finite=*/false);

@@ -101,3 +101,36 @@ def test_every_public_callable_has_a_docstring():
         obj = getattr(lamina, name)
         if callable(obj):
             assert (obj.__doc__ or "").strip(), f"lamina.{name} has no docstring"
+
+
+def pybind_callables():
+    """(qualified name, callable) of every public function and method that
+    the compiled extension defines (a pybind11 docstring signature)."""
+    from lamina import _lamina
+    out = []
+    for name in dir(_lamina):
+        obj = getattr(_lamina, name)
+        if name.startswith("__"):
+            continue
+        if inspect.isclass(obj):
+            for member in dir(obj):
+                if member.startswith("__") and member not in ("__init__", "__getitem__",
+                                                              "__contains__"):
+                    continue
+                fn = getattr(obj, member)
+                if callable(fn) and (getattr(fn, "__doc__", None) or "").startswith(member + "("):
+                    out.append((f"{name}.{member}", fn))
+        elif callable(obj) and (obj.__doc__ or "").startswith(name + "("):
+            out.append((name, obj))
+    return out
+
+
+def test_no_signature_names_a_pybind11_internal_type():
+    # help() and editors without the stubs read the docstring's first line:
+    # each argument names its Python type (python/src/hints.hpp), never
+    # pybind11's "handle"
+    found = pybind_callables()
+    assert len(found) >= 15, [n for n, _ in found]  # the module's functions and methods
+    for name, fn in found:
+        first = fn.__doc__.splitlines()[0]
+        assert not re.search(r":\s*handle\b", first), f"{name}: {first}"
