@@ -20,6 +20,7 @@
 #include "homogenize/distribution.hpp"
 #include "homogenize/homogenizer.hpp"
 #include "homogenize/library_entry.hpp"
+#include "homogenize/memory_estimate.hpp"
 #include "homogenize/nonlinear_run.hpp"
 #include "homogenize/reduced_order_run.hpp"
 #include "materials/catalog.hpp"
@@ -94,10 +95,10 @@ constexpr auto kPlans = lamina::core::enumNames<FftwPlan>(
 /// single also makes the operator and the CG vectors float from --tol 1e-4
 /// up (homogenize::floatVectors).
 enum class PrecisionChoice { Auto, Single, Double };
-constexpr auto kPrecisions = lamina::core::enumNames<PrecisionChoice>(
-    {{"auto", PrecisionChoice::Auto},
-     {"single", PrecisionChoice::Single},
-     {"double", PrecisionChoice::Double}});
+constexpr auto kPrecisions =
+    lamina::core::enumNames<PrecisionChoice>({{"auto", PrecisionChoice::Auto},
+                                              {"single", PrecisionChoice::Single},
+                                              {"double", PrecisionChoice::Double}});
 
 /// --estimate: how C is formed from the six solutions.
 constexpr auto kEstimates = lamina::core::enumNames<lamina::homogenize::Estimate>(
@@ -123,23 +124,13 @@ struct Cli {
   lamina::homogenize::PathSpec path;
   lamina::homogenize::TangentSpec tangent;
   std::vector<int> field_steps;
-  bool reduced_order = false;      ///< --reduced-order: a reduced-order cell entry
-  int partitions = 0;              ///< --partitions K per phase (0: not given, one per phase)
-  std::int64_t partition_seed = static_cast<std::int64_t>(lamina::homogenize::kDefaultPartitionSeed);
+  bool reduced_order = false; ///< --reduced-order: a reduced-order cell entry
+  int partitions = 0;         ///< --partitions K per phase (0: not given, one per phase)
+  std::int64_t partition_seed =
+      static_cast<std::int64_t>(lamina::homogenize::kDefaultPartitionSeed);
 
   /// @return true for a nonlinear run (a strain path or rate-dependent tangents)
   bool nonlinear() const { return path_given || !tangent.rates.empty(); }
-  /// @return true when the cell operator and the CG vectors run in float
-  /// (single-precision transforms and tol >= kFloatVectorsTol)
-  bool single() const {
-    const bool fft_single =
-        precision == PrecisionChoice::Single ||
-        (precision == PrecisionChoice::Auto &&
-         lamina::homogenize::autoPrecision(tol) == lamina::homogenize::Precision::Single);
-    return lamina::homogenize::floatVectors(fft_single ? lamina::homogenize::Precision::Single
-                                                       : lamina::homogenize::Precision::Double,
-                                            tol);
-  }
 };
 
 /// The strings CLI11 fills in; turned into the enums of Cli once, after parsing.
@@ -163,8 +154,8 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
                  "with --tangent-rates: NAME-R<rate>)");
   using lamina::core::Shared;
   lamina::core::addSharedOptions(app, cli.shared,
-                                 Shared::Library | Shared::Catalog | Shared::Set |
-                                     Shared::Threads | Shared::Json | Shared::Quiet);
+                                 Shared::Library | Shared::Catalog | Shared::Set | Shared::Threads |
+                                     Shared::Json | Shared::Quiet);
   names.tol = app.add_option("--tol", cli.tol,
                              "relative residual per load case (with --reduced-order the "
                              "default is 1e-8)")
@@ -195,7 +186,7 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   names.rate = app.add_option("--rate", cli.path.rate,
                               "nonlinear: driven strain rate (1/s, 1e-12 to 1e12; required "
                               "with --path ... --out)") // range: materials::checkRate
-                  ->default_str("");
+                   ->default_str("");
   names.to = app.add_option("--to", cli.path.to,
                             "nonlinear: final driven strain (required with --path ... --out; "
                             "confined: below 1)")
@@ -218,9 +209,8 @@ void addOptions(CLI::App& app, Cli& cli, CliNames& names) {
   app.add_option("--tangent-strain", cli.tangent.strain,
                  "driven strain of the state of the tangent entries")
       ->check(CLI::NonNegativeNumber);
-  app.add_option(
-         "--tangent-increment", cli.tangent.increment,
-         "strain increment a tangent is for, in (0, 1]: dt = increment / rate")
+  app.add_option("--tangent-increment", cli.tangent.increment,
+                 "strain increment a tangent is for, in (0, 1]: dt = increment / rate")
       ->check(CLI::PositiveNumber);
   addReducedOrderOptions(app, cli, names);
 }
@@ -296,9 +286,10 @@ void checkReducedOrderOptions(const Cli& cli, const CliNames& names) {
                                    "them as two commands)",
                                CLI::ExitCodes::ValidationError);
   if (!cli.reduced_order && (cli.partitions > 0 || names.seed->count() > 0))
-    throw CLI::ValidationError(std::string(cli.partitions > 0 ? "--partitions" : "--partition-seed") +
-                                   ": only with --reduced-order",
-                               CLI::ExitCodes::ValidationError);
+    throw CLI::ValidationError(
+        std::string(cli.partitions > 0 ? "--partitions" : "--partition-seed") +
+            ": only with --reduced-order",
+        CLI::ExitCodes::ValidationError);
   if (names.seed->count() > 0 && cli.partitions == 0)
     throw CLI::ValidationError("--partition-seed: seeds the k-means of --partitions K (without "
                                "it every phase is one partition)",
@@ -306,8 +297,7 @@ void checkReducedOrderOptions(const Cli& cli, const CliNames& names) {
 }
 
 /// The build options of --reduced-order.
-lamina::homogenize::ReducedOrderOptions reducedOrderOptions(const Cli& cli,
-                                                            const CliNames& names) {
+lamina::homogenize::ReducedOrderOptions reducedOrderOptions(const Cli& cli, const CliNames& names) {
   lamina::homogenize::ReducedOrderOptions opt;
   if (names.tol->count() > 0)
     opt.tol = cli.tol;
@@ -354,7 +344,7 @@ void checkNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec) {
     std::vector<std::filesystem::path> inputs{
         cli.cell_path, materials::Library::resolvePath(cli.shared.library),
         cli.shared.catalog.empty() ? materials::Catalog::defaultPath()
-                            : std::filesystem::path(cli.shared.catalog)};
+                                   : std::filesystem::path(cli.shared.catalog)};
     if (spec.image)
       inputs.push_back(spec.image->path);
     for (const auto& f : homogenize::pathOutputs(cli.out, !cli.field_steps.empty()))
@@ -370,31 +360,30 @@ void checkNonlinear(const Cli& cli, const lamina::micro::CellSpec& spec) {
   }
 }
 
+/// The solver settings of the linear homogenization from the command line.
+lamina::homogenize::Options linearOptions(const Cli& cli, bool quiet) {
+  namespace hom = lamina::homogenize;
+  hom::Options opt;
+  opt.tol = cli.tol;
+  opt.threads = cli.shared.threads;
+  opt.measure = measureFlag(cli.plan);
+  opt.quiet = quiet;
+  opt.estimate = cli.estimate;
+  if (cli.precision != PrecisionChoice::Auto)
+    opt.precision =
+        cli.precision == PrecisionChoice::Single ? hom::Precision::Single : hom::Precision::Double;
+  return opt;
+}
+
 /// Refuses, before anything large is allocated, a grid of @p n voxels that
 /// does not fit in memory (docs/homogenize-solver.md, Memory).
 void checkMemory(const Cli& cli, const lamina::micro::CellSpec& spec, const std::array<int, 3>& n,
                  const lamina::homogenize::MpiSession& mpi) {
-  // per voxel three CG vectors (72 bytes in double, 36 in single precision),
-  // the FFT buffer, the phase index and with the energy estimate six
-  // displacement fields (a seventh in double for the dispersion sink when
-  // single), over the ranks; rank 0 also holds the whole phase map while it
-  // scatters it
   const std::uint64_t voxels = static_cast<std::uint64_t>(n[0]) * static_cast<std::uint64_t>(n[1]) *
                                static_cast<std::uint64_t>(n[2]);
-  const std::uint64_t field = cli.single() ? 12 : 24; // one displacement-like field
-  const std::uint64_t per_voxel =
-      4 + 4 * field + (cli.estimate == lamina::homogenize::Estimate::Energy ? 6 * field : 0) +
-      (spec.physical_size && cli.single() ? 24 : 0);
-  // a cell with a size also gets its dispersion tensor, formed on rank 0
-  // from the whole grid: the spectra h_hat of the six cases (6 x 3 complex
-  // doubles per mode of the half spectrum, 146 bytes per voxel), the FFT
-  // buffer and the density spectrum (32), the gathered displacement of a
-  // case when distributed (24)
-  const std::uint64_t dispersion_per_voxel =
-      spec.physical_size ? 180 + (mpi.ranks() > 1 ? 24 : 0) : 0;
   lamina::core::requireMemory(
-      double(voxels * per_voxel / static_cast<std::uint64_t>(mpi.ranks()) +
-             (mpi.rank() == 0 ? (8 + dispersion_per_voxel) * voxels : 0)),
+      lamina::homogenize::linearSolveBytes(voxels, linearOptions(cli, true), spec.physical_size,
+                                           mpi.ranks(), mpi.rank()),
       "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
           std::to_string(n[2]) + " voxels",
       {cli.cell_path, 0, cli.resolution > 0 ? "--resolution" : "cell.resolution"},
@@ -505,15 +494,7 @@ void runLinear(const Cli& cli, const lamina::micro::CellSpec& spec,
   if (cli.name.empty())
     throw Error("--name NAME is required");
   materials::Library lib(materials::Library::resolvePath(cli.shared.library));
-  homogenize::Options opt;
-  opt.tol = cli.tol;
-  opt.threads = cli.shared.threads;
-  opt.measure = measureFlag(cli.plan);
-  opt.quiet = cli.shared.quiet || mpi.rank() != 0;
-  opt.estimate = cli.estimate;
-  if (cli.precision != PrecisionChoice::Auto)
-    opt.precision = cli.precision == PrecisionChoice::Single ? homogenize::Precision::Single
-                                                             : homogenize::Precision::Double;
+  const homogenize::Options opt = linearOptions(cli, cli.shared.quiet || mpi.rank() != 0);
   const homogenize::Distribution dist = homogenize::Distribution::world(homogenize::gridOf(cell));
   homogenize::homogenizeIntoLibrary(
       spec, cell, cli.name, opt, lib, cli.overwrite,
@@ -532,8 +513,8 @@ void run(Cli& cli, const CliNames& names, lamina::homogenize::MpiSession& mpi) {
   if (!cli.name.empty()) // a nonlinear run without a library entry has none
     core::checkName(cli.name, "entry name", {"", 0, "--name"});
   core::checkThreads(cli.shared.threads, "--threads");
-  const micro::CellSpec spec = micro::readCell(
-      cli.cell_path, micro::lazyCatalog(cli.shared.catalog), cli.shared.overrides);
+  const micro::CellSpec spec =
+      micro::readCell(cli.cell_path, micro::lazyCatalog(cli.shared.catalog), cli.shared.overrides);
   std::array<int, 3> n = spec.resolution;
   if (cli.resolution > 0)
     n = {cli.resolution, cli.resolution, cli.resolution};

@@ -10,6 +10,7 @@
 #include "core/names.hpp"
 #include "core/resources.hpp"
 #include "homogenize/library_entry.hpp"
+#include "homogenize/memory_estimate.hpp"
 #include "homogenize/nonlinear_run.hpp"
 #include "materials/point_driver.hpp"
 #include "micro/phase_map_io.hpp"
@@ -94,6 +95,20 @@ py::object tomlToPython(const toml::node& n) {
   return py::str(os.str());
 }
 
+/// Refuses, as the program does before it allocates, a cell whose solve
+/// with @p opt does not fit in memory (lamina.InputError with the amount).
+void requireSolveMemory(const CellData& c, const homogenize::Options& opt) {
+  const std::array<int, 3>& n = c.cell.n;
+  core::requireMemory(
+      homogenize::linearSolveBytes(std::uint64_t(n[0]) * std::uint64_t(n[1]) * std::uint64_t(n[2]),
+                                   opt, c.spec.physical_size),
+      "homogenizing " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
+          std::to_string(n[2]) + " voxels",
+      {c.source, 0, ""},
+      "a coarser cell, or tol >= 1e-4 (single precision), or the program under mpirun "
+      "(each rank holds 1/N of the fields)");
+}
+
 std::shared_ptr<HomogenizeData> homogenizeCell(hint::CellArg cell, hint::OptionalFloat tol,
                                                hint::OptionalInt threads, hint::Float J,
                                                hint::Progress progress) {
@@ -107,6 +122,7 @@ std::shared_ptr<HomogenizeData> homogenizeCell(hint::CellArg cell, hint::Optiona
   const double j = toDouble(J, "J");
   if (!(j > 0))
     throwInput("volume ratio J must be positive, got " + std::string(py::str(J)), "J");
+  requireSolveMemory(*c, opt);
   auto data = std::make_shared<HomogenizeData>();
   data->cell = c;
   LongCall(py::reinterpret_borrow<py::object>(progress)).run([&] {
