@@ -303,7 +303,9 @@ void addHomogenized(py::handle result, materials::Library& library, const std::s
   for (const auto& p : data->cell->spec.phases)
     phase_names.push_back(p.name);
   const std::shared_ptr<const CellData> cell = data->cell;
-  // the entry and its phase-map side file in one locked transaction, as the program's
+  // the entry and its phase-map side file in one locked transaction, as the
+  // program's; without the GIL, since the lock may wait on another process
+  py::gil_scoped_release unlocked;
   library.add(std::move(m), overwrite, [cell, phase_names](const std::filesystem::path& h5) {
     micro::writePhaseMap(cell->cell, phase_names, h5);
   });

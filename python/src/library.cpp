@@ -131,6 +131,7 @@ std::vector<mat::Ply> pliesArgument(py::handle plies) {
 void addFromCatalog(const PyLibrary& self, hint::Str name, hint::Str catalog_name, bool overwrite) {
   const std::string n = strArgument(name, "name");
   const std::string key = strArgument(catalog_name, "catalog_name");
+  py::gil_scoped_release unlocked; // the library's lock may wait on another process
   const mat::Catalog catalog(self.catalogFile());
   self.load().add(mat::catalogEntry(catalog, key, n, kAddFromCatalogProgram), overwrite);
 }
@@ -139,6 +140,7 @@ void addFromCatalog(const PyLibrary& self, hint::Str name, hint::Str catalog_nam
 void addLayup(const PyLibrary& self, hint::Str name, hint::Plies plies, bool overwrite) {
   const std::string n = strArgument(name, "name");
   const std::vector<mat::Ply> stack = pliesArgument(plies);
+  py::gil_scoped_release unlocked; // the library's lock may wait on another process
   mat::MaterialSource source(self.path().string(), self.catalog());
   const mat::Material m = mat::layupEntry(n, stack, source, kLayupProgram);
   self.load().add(m, overwrite);
@@ -228,7 +230,9 @@ void bindLibrary(py::module_& m) {
       .def(
           "remove",
           [](const PyLibrary& self, hint::Str name) {
-            self.load().remove(strArgument(name, "name"));
+            const std::string n = strArgument(name, "name");
+            py::gil_scoped_release unlocked; // the lock may wait on another process
+            self.load().remove(n);
           },
           py::arg("name"), "Removes entry `name` (as `materials remove NAME`).");
 }

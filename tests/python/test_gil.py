@@ -56,3 +56,29 @@ def test_membrane_run_releases_the_gil(source_dir):
     case = source_dir / "cases" / "membrane" / "case1.toml"
     assert_released(*steps_beside(
         lambda: lamina.membrane.run(case, set={"mesh.nx": 121}, threads=1)))
+
+
+def test_library_writes_wait_for_the_lock_without_the_gil(library_path):
+    # Another process holds the library's lock (flock on <library>.lock, as
+    # the programs take it) for 0.5 s: each write waits for it, and while it
+    # waits the other Python thread keeps running.
+    import subprocess
+    import sys
+    lib = lamina.Library(library_path)
+    holder = ("import fcntl, sys, time\n"
+              "f = open(sys.argv[1], 'a')\n"
+              "fcntl.flock(f, fcntl.LOCK_EX)\n"
+              "print('locked', flush=True)\n"
+              "time.sleep(0.5)\n")
+    writes = [lambda: lib.add_from_catalog("glass", "e-glass"),
+              lambda: lib.layup("ply2", [("glass", 0.0, 1e-3), ("glass", 90.0, 1e-3)]),
+              lambda: lib.remove("ply2")]
+    for write in writes:
+        proc = subprocess.Popen([sys.executable, "-c", holder, str(library_path) + ".lock"],
+                                stdout=subprocess.PIPE, text=True)
+        assert proc.stdout.readline().strip() == "locked"
+        steps, duration = steps_beside(write)
+        proc.wait()
+        assert duration > 0.3, f"the write did not wait for the lock ({duration:.3f} s)"
+        assert_released(steps, duration)
+    assert "glass" in lib and "ply2" not in lib
