@@ -53,9 +53,10 @@ public:
     for (long s = sim.steps() + 1; more(s) && !failure && !interrupted && !stopped; ++s) {
       if (adaptive_ && static_cast<double>(s) > kMaxSteps)
         throw Error("the explicit step shrank with the law's stiffness so far that t_end needs "
-                    "more than " + core::formatShort(kMaxSteps) + " steps (t = " +
-                        core::formatShort(sim.time()) + " s, dt = " +
-                        core::formatShort(sim.integrator().timeStep()) + " s)",
+                    "more than " +
+                        core::formatShort(kMaxSteps) +
+                        " steps (t = " + core::formatShort(sim.time()) +
+                        " s, dt = " + core::formatShort(sim.integrator().timeStep()) + " s)",
                     {"", 0, "time.t_end"});
       try {
         sim.step();
@@ -92,12 +93,12 @@ public:
       throw *failure;
     if (interrupted) {
       const auto& again = opt_.restart_folder.empty() ? opt_.out_dir : opt_.restart_folder;
-      throw Interrupted(interrupted,
-                        "interrupted by " + core::signalName(interrupted) +
-                            " at t = " + core::formatShort(sim.time()) + " s (step " +
-                            std::to_string(sim.steps()) + " of " + std::to_string(steps) +
-                            "); outputs and checkpoint " + "written to " + opt_.out_dir.string() +
-                            " (continue with --restart " + again.string() + ")");
+      throw Interrupted(interrupted, "interrupted by " + core::signalName(interrupted) +
+                                         " at t = " + core::formatShort(sim.time()) + " s (step " +
+                                         std::to_string(sim.steps()) + " of " +
+                                         std::to_string(steps) + "); outputs and checkpoint " +
+                                         "written to " + opt_.out_dir.string() +
+                                         " (continue with --restart " + again.string() + ")");
     }
     return summary;
   }
@@ -118,8 +119,7 @@ private:
                  : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
     // A law with history changes the explicit step as the run goes
     // (Simulation::adaptStep): the run ends at t_end, steps_ is an estimate.
-    adaptive_ =
-        model_.time.integrator == IntegratorKind::Explicit && sim.structure().hasHistory();
+    adaptive_ = model_.time.integrator == IntegratorKind::Explicit && sim.structure().hasHistory();
     std::optional<Checkpoint> resumed;
     if (opt_.restart)
       resumed = resume(sim);
@@ -192,15 +192,15 @@ private:
       for (const char* c : {"_ux", "_uy", "_uz", "_vx", "_vy", "_vz"})
         h += "," + p.name + c;
     probes_ = table("probes.csv", h, 0);
-    energy_ = table("energy.csv",
-                    "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance,"
-                    "micro_kinetic" +
-                        std::string(extra_energy_ ? ",spring_work,damping_work" : "") +
-                        std::string(sim.structure().nonConservativeWrinkling()
-                                        ? ",wrinkling_dissipation"
-                                        : "") +
-                        std::string(sim.structure().hasHistory() ? ",inelastic_dissipation" : ""),
-                    1);
+    energy_ =
+        table("energy.csv",
+              "t,kinetic,strain,external_work,reaction_work,drag_work,total,balance,"
+              "micro_kinetic" +
+                  std::string(extra_energy_ ? ",spring_work,damping_work" : "") +
+                  std::string(sim.structure().nonConservativeWrinkling() ? ",wrinkling_dissipation"
+                                                                         : "") +
+                  std::string(sim.structure().hasHistory() ? ",inelastic_dissipation" : ""),
+              1);
     const auto names = sim.reactionNames();
     if (!names.empty()) {
       std::string r = "t";
@@ -225,8 +225,7 @@ private:
   /// @return whether a step of an adaptive run (adaptive_) has reached t_end:
   /// as the fixed-step explicit run, which covers t_end by ceil(t_end / dt - 1e-9) steps
   bool endReached(const Simulation& sim) const {
-    return adaptive_ &&
-           sim.time() >= model_.time.t_end - 1e-9 * sim.integrator().timeStep();
+    return adaptive_ && sim.time() >= model_.time.t_end - 1e-9 * sim.integrator().timeStep();
   }
   /// @return whether step @p s is still to be taken
   bool more(long s) const { return adaptive_ ? !reached_end_ : s <= steps_; }
@@ -259,8 +258,8 @@ private:
       for (Eigen::Index j = 0; j < times.size(); ++j)
         if (!(times[j] >= (j ? times[j - 1] : 0.0) && times[j] <= sim.time()))
           throw Error("checkpoint entry 'run/field_times' value " + std::to_string(j) + " is " +
-                      core::formatExact(times[j]) + " s, not in order up to t = " +
-                      core::formatExact(sim.time()) + " s");
+                      core::formatExact(times[j]) +
+                      " s, not in order up to t = " + core::formatExact(sim.time()) + " s");
       return {times.data(), times.data() + times.size()};
     }
     for (Eigen::Index j = 0; j < times.size(); ++j) {
@@ -285,11 +284,11 @@ private:
     h["run/probe_peak"] = Eigen::Map<const Eigen::VectorXd>(
         probe_peak_.data(), static_cast<Eigen::Index>(probe_peak_.size()));
     const auto& e = last_energy_;
-    h["run/last_energy"] = (Eigen::VectorXd(11) << e.kinetic, e.micro_kinetic, e.strain,
-                            e.external_work, e.reaction_work, e.drag_work, e.spring_work,
-                            e.damping_work, e.balance, e.wrinkling_dissipation,
-                            e.inelastic_dissipation)
-                               .finished();
+    h["run/last_energy"] =
+        (Eigen::VectorXd(11) << e.kinetic, e.micro_kinetic, e.strain, e.external_work,
+         e.reaction_work, e.drag_work, e.spring_work, e.damping_work, e.balance,
+         e.wrinkling_dissipation, e.inelastic_dissipation)
+            .finished();
     h["run/csv_bytes"] = Eigen::Vector3d(static_cast<double>(probes_->bytes()),
                                          static_cast<double>(energy_->bytes()),
                                          reactions_ ? static_cast<double>(reactions_->bytes()) : 0);
@@ -554,7 +553,7 @@ private:
   std::unique_ptr<FieldWriter> fields_;
   std::unique_ptr<CsvWriter> probes_, energy_, reactions_;
   std::vector<double> peak_reaction_, probe_peak_;
-  long steps_ = 0;                              // steps of the whole run (adaptive: estimate)
+  long steps_ = 0;           // steps of the whole run (adaptive: estimate)
   bool adaptive_ = false;    // the explicit step follows a law's state: the run ends at t_end
   bool reached_end_ = false; // adaptive_: the current state is at t_end
   std::uintmax_t resumed_bytes_[3] = {0, 0, 0}; // a checkpoint's table sizes
@@ -679,7 +678,6 @@ private:
   /// @return the case without its drag tables and drag loads
   Model bareModel() const {
     Model bare = model_;
-    bare.drags.clear();
     bare.surface_loads.erase(
         std::remove_if(bare.surface_loads.begin(), bare.surface_loads.end(),
                        [](const auto& l) { return l->kind() == WorkKind::Drag; }),

@@ -28,18 +28,31 @@ const SparseMatrix& requireStiffness(const Structure& s) {
                 "use time.integrator = \"explicit\" for the large-deflection model");
   return *s.stiffness();
 }
+
+/// @return @p K, or K + K_s (the springs' stiffness on the diagonal) in
+/// @p own when @p model has springs to the ground.
+const SparseMatrix& withSprings(const SparseMatrix& K, const Model& model, SparseMatrix& own) {
+  if (model.springs.empty())
+    return K;
+  own = K;
+  for (const auto& s : model.springs)
+    for (int d : s->dofs())
+      own.coeffRef(d, d) += s->stiffness(); // K's 3x3 diagonal blocks are stored
+  return own;
+}
 } // namespace
 
 Newmark::Newmark(const Model& model, const Structure& structure, const LoadSet& loads,
                  const ConstrainedDofs& cons)
     : model_(model), structure_(structure), loads_(loads), cons_(cons),
-      K_(requireStiffness(structure)) {
+      K_(withSprings(requireStiffness(structure), model, Kown_)),
+      rigid_(model.rigid, structure.numDofs()) {
   const auto& ts = model.time;
   LAMINA_CHECK(ts.dt > 0, "time step must be > 0");
   LAMINA_CHECK(ts.beta1 > 0, "beta1 must be > 0");
   const int ndof = structure.numDofs();
   const auto t0 = std::chrono::steady_clock::now();
-  // eq. (30): A = M + tau^2/2 beta2 K (HHT: times 1 + alpha on K).
+  // eq. (30): A = M + tau^2/2 beta2 K (HHT: times 1 + alpha on K; K with the springs).
   c_ = 0.5 * ts.dt * ts.dt * ts.beta2;
   SparseMatrix A = structure.mass(); // local: the solver keeps its own copy or factor
   {
@@ -68,6 +81,7 @@ Newmark::Newmark(const Model& model, const Structure& structure, const LoadSet& 
     Afc_.resize(ndof, ndof);
     Afc_.setFromTriplets(fc.begin(), fc.end());
   }
+  A = rigid_.condense(A); // the free rows of Afc_ are condensed with b
   Kb_ = BlockMatrix(K_);
   Kc_ = extractRows(K_, cons.dofs());
   Mc_ = extractRows(structure.mass(), cons.dofs());
@@ -86,8 +100,10 @@ void Newmark::init(State& s) {
   loads_.external(s.t, s.u, cur_.external);
   if (loads_.hasDrag())
     loads_.drag(s.u, s.v, cur_.drag);
-  // Consistent initial acceleration: M a_0 = F_0 + Fd_0 - K u_0 on the free
-  // DOFs, a_0 = 0 on the constrained ones.
+  if (loads_.hasSprings())
+    loads_.springs(s.u, cur_.spring);
+  // Consistent initial acceleration: M a_0 = F_0 + Fd_0 - (K + K_s) u_0 on the
+  // free DOFs (condensed on the rigid sets), a_0 = 0 on the constrained ones.
   s.a = Eigen::VectorXd::Zero(ndof);
   multiply(K_, s.u, ku_);
   b_ = cur_.external + cur_.drag - ku_;
@@ -100,8 +116,11 @@ void Newmark::init(State& s) {
       for (SparseMatrix::InnerIterator it(Mf, i); it; ++it)
         if (constrained[i] || constrained[it.col()])
           it.valueRef() = (i == it.col()) ? 1.0 : 0.0;
+    Mf = rigid_.condense(Mf);
+    rigid_.restrict(b_);
     StepSolver ms(Mf, ts.solver, std::min(ts.tolerance, 1e-13), ts.max_iterations);
     ms.solve(b_, s.a);
+    rigid_.expand(s.a);
   }
   a_prev_ = s.a;
   cur_.reaction.resize(static_cast<Eigen::Index>(cons_.size()));
@@ -113,7 +132,7 @@ void Newmark::init(State& s) {
 }
 
 void Newmark::reactions(const State& s, const StateForces& f, Eigen::VectorXd& r) const {
-  // R = M a + K u - F - F_drag at the constrained DOFs.
+  // R = M a + (K + K_s) u - F - F_drag at the constrained DOFs (= ... - F_s).
   if (cons_.empty())
     return;
   r = Mc_ * s.a + Kc_ * s.u;
@@ -148,6 +167,8 @@ void Newmark::step(State& s) {
   prescribeAccelerations(t1);
   solveAcceleration(s, t1);
   correct(s, t1);
+  if (loads_.hasSprings())
+    loads_.springs(u1_, next_.spring); // F_s at t_{n+1}, for the spring work
   // Commit (a_n <- a_{n+1}, then a_{n-1} <- a_n by swaps).
   commitStep(s, t1, u1_, v1_, a1_);
   std::swap(a_prev_, a1_);
@@ -233,11 +254,14 @@ void Newmark::solveAcceleration(const State& s, double t1) {
     Eigen::VectorXd previous;
     if (has_drag)
       previous = a1_;
+    rigid_.restrict(tmp_);
+    rigid_.zeroSlaves(a1_); // the condensed solution's value there
     try {
       last_iterations_ += solver_->solve(tmp_, a1_);
     } catch (const DivergenceError& e) {
       divergedInSolve(s, e, t1);
     }
+    rigid_.expand(a1_);
     if (!has_drag)
       break;
     if ((a1_ - previous).norm() <= ts.drag_tolerance * (a1_.norm() + 1e-300))

@@ -1,10 +1,15 @@
 #pragma once
 /// @file newmark.hpp
 /// @brief The Newmark scheme of the membrane paper (eq. 30) with HHT-alpha,
-/// constraints and implicit drag, for a linear Structure (constant K).
+/// constraints, implicit drag, springs to the ground and rigid sets, for a
+/// linear Structure (constant K).
 ///
-/// Equation: M a + K u = F(t) + F_drag(v) + R, with R the reactions at the
-/// constrained DOFs (zero elsewhere). One step (tau = dt, c = tau^2 beta2 / 2):
+/// Equation: M a + K u = F(t) + F_drag(v) + F_s(u) + R, with R the reactions
+/// at the constrained DOFs (zero elsewhere) and F_s = -K_s u the springs to
+/// the ground ([[spring]]; K_s diagonal, k per spring DOF). The springs are
+/// linear: K below stands for K + K_s (in A, in K u~ and in R), and
+/// forces().spring holds F_s for the energy balance (spring_work). One step (tau = dt, c = tau^2
+/// beta2 / 2):
 ///   u~ = u_n + tau v_n + tau^2/2 (1 - beta2) a_n,  v~ = v_n + tau (1 - beta1) a_n
 ///   A a_{n+1} = F_{n+1} + F_drag,n+1 - K u~          (A = M + c K, set up once)
 ///   u_{n+1} = u~ + c a_{n+1},  v_{n+1} = v~ + beta1 tau a_{n+1}.
@@ -17,17 +22,23 @@
 /// time, second order; it converges when beta1 tau |dF/dv| / m < 1, which
 /// holds by orders of magnitude for air).
 ///
-/// Reactions: R = M a + K u - F - F_drag at the constrained DOFs. With the
+/// Rigid sets ([[rigid]]): the accelerations are condensed, a = T a_r
+/// (rigid_condensation.hpp): A and the right-hand side become T^T A T and
+/// T^T b, so each set takes one acceleration, its total force over its
+/// total "mass" (the sum of its rows of A).
+///
+/// Reactions: R = M a + K u - F - F_drag - F_s at the constrained DOFs. With the
 /// works of energy.hpp, E_n - E_0 - W_n = 0 exactly in exact arithmetic for
 /// beta1 = beta2 = 1/2 and alpha = 0 (the identity of the
 /// average-acceleration rule).
 
 #include "core/error.hpp"
-#include "membrane/model/block_matrix.hpp"
+#include "membrane/integrators/rigid_condensation.hpp"
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/system/load_set.hpp"
+#include "membrane/model/block_matrix.hpp"
 #include "membrane/model/structure.hpp"
+#include "membrane/system/load_set.hpp"
 
 #include <memory>
 #include <vector>
@@ -37,9 +48,9 @@ namespace lamina::membrane {
 /// Newmark / HHT-alpha on a linear structure.
 class Newmark final : public TimeIntegrator {
 public:
-  /// Builds A = M + c K with the constraints and sets up its solver
-  /// (settings from model.time). Throws lamina::Error when @p structure
-  /// has no constant stiffness. All arguments must outlive the scheme.
+  /// Builds A = M + c (K + K_s) with the constraints and the rigid sets' condensation and sets up
+  /// its solver (settings from model.time). Throws lamina::Error when @p structure has no constant
+  /// stiffness. All arguments must outlive the scheme.
   Newmark(const Model& model, const Structure& structure, const LoadSet& loads,
           const ConstrainedDofs& cons);
   ~Newmark() override;
@@ -62,7 +73,8 @@ private:
   /// The step's stages, in order (step() reads as the method of the file comment).
   /// u~, v~ of eq. (30) into ut_, vt_, and the solver's start a1_ = 2 a_n - a_{n-1}.
   void predict(const State& s);
-  /// b_ = (1 + alpha) (F_{n+1} - K u~) - alpha (F_n + Fd_n - K u_n) (HHT-alpha; alpha = 0: the paper's).
+  /// b_ = (1 + alpha) (F_{n+1} - K u~) - alpha (F_n + Fd_n - K u_n) (HHT-alpha; alpha = 0: the
+  /// paper's).
   void assembleRightHandSide(const State& s, double t1);
   /// The constrained DOFs' accelerations ac_ that bring v_{n+1} to the
   /// prescribed velocity at @p t1; their columns of A move to b_.
@@ -80,7 +92,9 @@ private:
   const Structure& structure_;
   const LoadSet& loads_;
   const ConstrainedDofs& cons_;
-  const SparseMatrix& K_;
+  SparseMatrix Kown_;       // K + K_s when the model has springs (else empty)
+  const SparseMatrix& K_;   // the stiffness of the step: K, or Kown_
+  RigidCondensation rigid_; // a = T a_r of the rigid sets
   SparseMatrix Afc_, Kc_, Mc_;
   BlockMatrix Kb_; // K in 3x3 blocks for the per-step K u~
   std::unique_ptr<StepSolver> solver_;

@@ -69,8 +69,6 @@ void readSections(const core::TableReader& root, const MaterialSources& sources,
 void readTimeAndOutput(const core::TableReader& root, Model& model);
 /// [[probe]] (case_settings.cpp).
 void readProbes(const core::TableReader& root, Model& model);
-/// Features only the explicit integrator has (case_settings.cpp).
-void checkIntegrator(const core::TableReader& root, const Model& model);
 /// [[fixed]] and [[strike]] (case_constraints.cpp); @return the constraint
 /// owning each DOF (-1: free).
 std::vector<int> readConstraints(const core::TableReader& root, Model& model);

@@ -8,8 +8,8 @@
 #include "core/names.hpp"
 #include "core/toml_reader.hpp"
 #include "membrane/loads/blast_pressure.hpp"
+#include "membrane/loads/drag.hpp"
 #include "membrane/loads/element_pressure.hpp"
-#include "membrane/loads/follower_drag.hpp"
 
 #include <algorithm>
 #include <array>
@@ -228,12 +228,13 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
   }
 }
 
-/// [[drag]] (aerodynamic drag): on surface regions.
+/// [[drag]] (aerodynamic drag, loads/drag.hpp): on surface regions; the
+/// linear model's on the reference geometry, the large-deflection model's
+/// on the current one with the `area` and `normal` variants.
 void readDrags(const core::TableReader& root, Model& model) {
   const Mesh& mesh = model.mesh;
-  const int n = mesh.numNodes();
   for (const auto& r : root.tableArray("drag")) {
-    Drag d;
+    DragSpec d;
     const Selector sel = readSelectorOrAll(r);
     if (sel.kind != SelectBy::Region && sel.kind != SelectBy::All)
       r.failHere("drag acts on a surface region: give region = NAME (or nothing for all)");
@@ -243,24 +244,18 @@ void readDrags(const core::TableReader& root, Model& model) {
     d.fluid_density = r.getDouble("fluid_density", 1.225);
     if (!(d.fluid_density > 0))
       r.fail("fluid_density", "must be > 0");
-    d.resultant = r.getChoice("velocity", {{"normal", false}, {"resultant", true}}, false);
-    const auto elems = selectElements(mesh, sel, r);
-    if (model.kind == ModelKind::LargeDeflection) {
-      model.surface_loads.push_back(
-          std::make_shared<FollowerDrag>("drag" + std::to_string(model.surface_loads.size()), elems,
-                                         d.cd, d.fluid_density, d.resultant));
-      continue;
-    }
-    std::vector<double> area(n, 0.0);
-    for (int e : elems)
-      for (int node : mesh.triangles[e])
-        area[node] += mesh.area(e) / 3;
-    for (int i = 0; i < n; ++i)
-      if (area[i] > 0) {
-        d.nodes.push_back(i);
-        d.area.push_back(area[i]);
-      }
-    model.drags.push_back(std::move(d));
+    d.speed = r.getChoice("velocity", kDragSpeedNames, DragSpeed::Normal);
+    const bool large = model.kind == ModelKind::LargeDeflection;
+    d.geometry = large ? Geometry::Current : Geometry::Reference;
+    for (const char* key : {"area", "normal"})
+      if (!large && r.has(key))
+        r.fail(key, "applies to the large-deflection model only: the linear model's drag acts "
+                    "on the flat reference membrane (reference areas, normal e_z)");
+    d.area = r.getChoice("area", kDragAreaNames, DragArea::Current);
+    d.normal = r.getChoice("normal", kDragNormalNames, DragNormal::Nodal);
+    model.surface_loads.push_back(
+        std::make_shared<Drag>("drag" + std::to_string(model.surface_loads.size()), mesh,
+                               selectElements(mesh, sel, r), d));
   }
 }
 

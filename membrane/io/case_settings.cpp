@@ -135,16 +135,6 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
   readOutput(root, model);
 }
 
-/// Features only the explicit integrator has.
-void checkIntegrator(const core::TableReader& root, const Model& model) {
-  if (model.time.integrator == IntegratorKind::Explicit)
-    return;
-  if (!model.springs.empty())
-    root.fail("spring", "springs need time.integrator = \"explicit\"");
-  if (!model.rigid.empty())
-    root.fail("rigid", "rigid sets need time.integrator = \"explicit\"");
-}
-
 /// [[probe]].
 void readProbes(const core::TableReader& root, Model& model) {
   const Mesh& mesh = model.mesh;

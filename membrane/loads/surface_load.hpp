@@ -36,6 +36,12 @@ struct LoadTime {
   }
 };
 
+/// The configuration a surface load is evaluated on.
+enum class Geometry {
+  Reference, ///< the reference (initial) positions X: the linear model's
+  Current    ///< the current positions x = X + u: the large-deflection model's
+};
+
 /// Which work a load's force enters in the energy bookkeeping.
 enum class WorkKind {
   External, ///< external_work

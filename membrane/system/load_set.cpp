@@ -6,7 +6,6 @@ namespace lamina::membrane {
 
 LoadSet::LoadSet(const Model& model) : model_(model) {
   has_external_ = !model.loads.empty();
-  has_drag_ = !model.drags.empty();
   for (const auto& l : model.surface_loads) {
     has_external_ = has_external_ || l->kind() == WorkKind::External;
     has_drag_ = has_drag_ || l->kind() == WorkKind::Drag;
@@ -34,8 +33,6 @@ void LoadSet::external(double t, const Eigen::VectorXd& u, Eigen::VectorXd& f) c
 
 void LoadSet::drag(const Eigen::VectorXd& u, const Eigen::VectorXd& v, Eigen::VectorXd& f) const {
   f.setZero(model_.numDofs());
-  for (const auto& d : model_.drags)
-    addDragForce(d, v, f);
   if (!model_.surface_loads.empty())
     addSurface(WorkKind::Drag, 0.0, u, v, f);
 }

@@ -13,7 +13,6 @@
 /// acts on it (its forces, reactions and works for the integrators) belongs.
 
 #include "core/enum_names.hpp"
-#include "membrane/loads/drag.hpp"
 #include "membrane/loads/ground_springs.hpp"
 #include "membrane/loads/load.hpp"
 #include "membrane/loads/surface_load.hpp"
@@ -63,7 +62,8 @@ inline constexpr auto kLinearSolverKindNames = core::enumNames<LinearSolverKind>
     {{"cg", LinearSolverKind::Cg}, {"cholesky", LinearSolverKind::Cholesky}});
 
 /// DOFs that move together (a rigid translating frame): one acceleration,
-/// total force over total mass. Explicit integrator only.
+/// total force over total mass (both schemes; Newmark condenses them,
+/// integrators/rigid_condensation.hpp).
 struct RigidSet {
   std::string name;      ///< for messages
   std::vector<int> dofs; ///< the DOFs tied together (one component each set)
@@ -101,17 +101,17 @@ struct OutputSettings {
 /// Everything a run needs: the body (mesh, sections, point masses) and
 /// what acts on it. The structures (model/) see only the Body part.
 struct Model : Body {
-  std::string name;                                              ///< case name (file stem)
-  std::vector<Constraint> constraints;                           ///< fixed and moving DOF sets
-  std::vector<Load> loads;                                       ///< external loads (incl. gravity)
-  std::vector<Drag> drags;                                       ///< drag regions (linear model)
-  ModelKind kind = ModelKind::Linear;                            ///< which membrane model
-  std::vector<std::shared_ptr<const SurfaceLoad>> surface_loads; ///< follower loads
-  std::vector<std::shared_ptr<const GroundSprings>> springs;     ///< springs to the ground
-  std::vector<RigidSet> rigid;                                   ///< rigid translating sets
-  std::vector<Probe> probes;                                     ///< probes
-  TimeSettings time;                                             ///< time stepping
-  OutputSettings output;                                         ///< outputs
+  std::string name;                    ///< case name (file stem)
+  std::vector<Constraint> constraints; ///< fixed and moving DOF sets
+  std::vector<Load> loads;             ///< external loads (incl. gravity)
+  ModelKind kind = ModelKind::Linear;  ///< which membrane model
+  std::vector<std::shared_ptr<const SurfaceLoad>>
+      surface_loads; ///< configuration-dependent loads (pressures, drag)
+  std::vector<std::shared_ptr<const GroundSprings>> springs; ///< springs to the ground
+  std::vector<RigidSet> rigid;                               ///< rigid translating sets
+  std::vector<Probe> probes;                                 ///< probes
+  TimeSettings time;                                         ///< time stepping
+  OutputSettings output;                                     ///< outputs
   Eigen::VectorXd u0, v0;            ///< initial displacement and velocity (empty = zero)
   bool compare_without_drag = false; ///< run also without the drag and compare peaks
 };

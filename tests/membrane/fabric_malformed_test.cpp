@@ -61,9 +61,15 @@ TEST(FabricMalformed, ExplicitKeysNeedTheExplicitIntegrator) {
   expectNames(
       errorOf(test::isotropicSquare(4) + "[time]\ndt = 1.0e-5\nt_end = 1.0e-4\ndamping = 1.0\n"),
       "time.damping", "explicit");
-  expectNames(errorOf(test::isotropicSquare(4) + "[time]\ndt = 1.0e-5\nt_end = 1.0e-4\n" +
-                      "[[spring]]\nnodes = \"edges\"\nstiffness = 1.0e3\n"),
-              "spring", "explicit");
+}
+
+// Springs and rigid sets are no longer explicit-only: Newmark takes both.
+TEST(FabricMalformed, NewmarkTakesSpringsAndRigidSets) {
+  EXPECT_EQ(errorOf(test::isotropicSquare(4) + "[time]\ndt = 1.0e-5\nt_end = 1.0e-4\n" +
+                        "[[spring]]\nnodes = \"edges\"\nstiffness = 1.0e3\n"
+                        "[[rigid]]\nnodes = \"left\"\n",
+                    true),
+            "");
 }
 
 TEST(FabricMalformed, ExplicitStepAboveTheStableStepIsRejected) {
@@ -84,6 +90,23 @@ TEST(FabricMalformed, BadSpringAndRigidSetsAreNamed) {
               "already constrained");
   expectNames(errorOf(base + "[[rigid]]\nnodes = \"left\"\ncomponents = \"zq\"\n"),
               "rigid[0].components", "xyz");
+}
+
+// The drag's area and normal variants: the large-deflection model's only
+// (the linear model's flat membrane has one normal and fixed areas), and
+// their values are the enums' names.
+TEST(FabricMalformed, DragVariantKeysAreChecked) {
+  const std::string linear =
+      test::isotropicSquare(4) + "[time]\ndt = 1.0e-5\nt_end = 1.0e-4\n" + "[[drag]]\ncd = 1.5\n";
+  expectNames(errorOf(linear + "area = \"reference\"\n"), "drag[0].area",
+              "large-deflection model only");
+  expectNames(errorOf(linear + "normal = \"element\"\n"), "drag[0].normal",
+              "large-deflection model only");
+  const std::string large = "model = \"large_deflection\"\n" + test::isotropicSquare(4) +
+                            "[time]\nt_end = 1.0e-4\n" + kFixed + "[[drag]]\ncd = 1.5\n";
+  expectNames(errorOf(large + "area = \"deformed\"\n"), "drag[0].area", "reference");
+  expectNames(errorOf(large + "normal = \"face\"\n"), "drag[0].normal", "element");
+  EXPECT_EQ(errorOf(large + "area = \"reference\"\nnormal = \"element\"\n", true), "");
 }
 
 TEST(FabricMalformed, BadFabricValuesAreNamed) {
