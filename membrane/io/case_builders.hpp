@@ -79,6 +79,9 @@ void readSprings(const core::TableReader& root, Model& model);
 /// [[rigid]] (case_constraints.cpp): the selected nodes translate together;
 /// @p owner is readConstraints()' DOF owner list, extended.
 void readRigidSets(const core::TableReader& root, Model& model, std::vector<int>& owner);
+/// [[rigid_surface]] (case_contact.cpp): rigid bodies the membrane rests
+/// on; after the constraints and springs (their names must differ).
+void readRigidSurfaces(const core::TableReader& root, Model& model);
 /// [initial] (case_constraints.cpp): initial velocity (optional).
 void readInitial(const core::TableReader& root, Model& model);
 /// [[load]], [[point_mass]] and [gravity] (case_loads.cpp).

@@ -143,6 +143,8 @@ void checkIntegrator(const core::TableReader& root, const Model& model) {
     root.fail("spring", "springs need time.integrator = \"explicit\"");
   if (!model.rigid.empty())
     root.fail("rigid", "rigid sets need time.integrator = \"explicit\"");
+  if (!model.contact.empty())
+    root.fail("rigid_surface", "rigid_surface needs time.integrator = \"explicit\"");
 }
 
 /// [[probe]].
