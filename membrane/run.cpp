@@ -199,7 +199,8 @@ private:
                   std::string(extra_energy_ ? ",spring_work,damping_work" : "") +
                   std::string(sim.structure().nonConservativeWrinkling() ? ",wrinkling_dissipation"
                                                                          : "") +
-                  std::string(sim.structure().hasHistory() ? ",inelastic_dissipation" : ""),
+                  std::string(sim.structure().hasHistory() ? ",inelastic_dissipation" : "") +
+                  std::string(model_.contact.empty() ? "" : ",contact_work"),
               1);
     const auto names = sim.reactionNames();
     if (!names.empty()) {
@@ -300,6 +301,8 @@ private:
       times = fields_->times();
     h["run/field_times"] =
         Eigen::Map<const Eigen::VectorXd>(times.data(), static_cast<Eigen::Index>(times.size()));
+    if (!model_.contact.empty())
+      h["run/last_contact_work"] = Eigen::VectorXd::Constant(1, e.contact_work);
     return h;
   }
 
@@ -347,6 +350,8 @@ private:
       probe_peak_.assign(pp.data(), pp.data() + np);
       const Eigen::VectorXd& e = historyEntry(h, "run/last_energy", 11);
       last_energy_ = Energy{e[0], e[1], e[2], e[3], e[4], e[5], e[6], e[7], e[8], e[9], e[10]};
+      if (!model_.contact.empty())
+        last_energy_.contact_work = historyEntry(h, "run/last_contact_work", 1)[0];
       constexpr long kMaxBytes = 1L << 53; // doubles hold every integer up to here
       for (int t = 0; t < 3; ++t)
         resumed_bytes_[t] =
@@ -457,9 +462,12 @@ private:
         row.push_back(e.wrinkling_dissipation);
       if (sim.structure().hasHistory())
         row.push_back(e.inelastic_dissipation);
+      if (!model_.contact.empty())
+        row.push_back(e.contact_work);
       energy_->row(row);
       energy_scale_ = std::max({energy_scale_, std::abs(e.spring_work), std::abs(e.damping_work),
-                                std::abs(e.wrinkling_dissipation), e.inelastic_dissipation});
+                                std::abs(e.wrinkling_dissipation), e.inelastic_dissipation,
+                                std::abs(e.contact_work)});
     }
     if (fields && fields_)
       writeFields(sim);
@@ -500,6 +508,10 @@ private:
       s["energy"]["wrinkling_dissipation"] = e.wrinkling_dissipation;
     if (sim.structure().hasHistory())
       s["energy"]["inelastic_dissipation"] = e.inelastic_dissipation;
+    if (!model_.contact.empty()) {
+      s["energy"]["contact_work"] = e.contact_work;
+      s["contact"] = contactSummary(sim);
+    }
     nlohmann::json probes = nlohmann::json::object();
     for (size_t k = 0; k < model_.probes.size(); ++k) {
       const auto& p = model_.probes[k];
@@ -545,6 +557,40 @@ private:
     s["factor_s"] = sim.setupSeconds();
     s["step_s"] = sim.steps() ? step_s_ / double(sim.steps()) : 0.0;
     return s;
+  }
+
+  /// The summary's "contact": per rigid surface its deepest penetration
+  /// (when, where, against its tolerance), its peak and final force on the
+  /// membrane (the reactions' entry) and, for a free body, its motion.
+  nlohmann::json contactSummary(const Simulation& sim) const {
+    nlohmann::json c = nlohmann::json::object();
+    const auto names = sim.reactionNames();
+    const auto sums = sim.reactionSums();
+    const size_t first = names.size() - model_.contact.size();
+    for (size_t k = 0; k < model_.contact.size(); ++k) {
+      const ContactSurface& cs = model_.contact[k];
+      const PenetrationPeak& p = sim.penetration()[k];
+      const Eigen::Vector3d& f = sums[first + k];
+      nlohmann::json j = {
+          {"shape", std::string(kSurfaceShapeNames.name(cs.geometry.shape))},
+          {"max_penetration", p.depth},
+          {"penetration_tolerance", cs.tolerance},
+          {"max_penetration_time", p.time},
+          {"max_penetration_node",
+           p.node < 0 ? nlohmann::json(nullptr) : nlohmann::json(model_.mesh.nodeLabel(p.node))},
+          {"peak_force", peak_reaction_[first + k]},
+          {"final_force", {f[0], f[1], f[2]}}};
+      if (cs.free()) {
+        const auto at = static_cast<Eigen::Index>(3 * k);
+        const Eigen::Vector3d d = sim.state().surfaces.u.segment<3>(at);
+        const Eigen::Vector3d v = sim.state().surfaces.v.segment<3>(at);
+        j["displacement"] = {d[0], d[1], d[2]};
+        j["velocity"] = {v[0], v[1], v[2]};
+        j["kinetic_energy"] = 0.5 * cs.mass * v.squaredNorm();
+      }
+      c[cs.name] = j;
+    }
+    return c;
   }
 
   const Model& model_;

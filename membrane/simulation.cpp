@@ -14,27 +14,42 @@
 namespace lamina::membrane {
 
 namespace {
+/// @return the row sums of @p M (the lumped mass per DOF, kg)
+Eigen::VectorXd lumpedMass(const SparseMatrix& M) {
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(M.rows());
+  for (int d = 0; d < M.rows(); ++d)
+    for (SparseMatrix::InnerIterator it(M, d); it; ++it)
+      m[d] += it.value();
+  return m;
+}
+
 std::unique_ptr<Structure> makeStructure(const Model& model) {
   if (model.kind == ModelKind::LargeDeflection)
     return std::make_unique<LargeDeflection>(model);
   return std::make_unique<LinearMembrane>(model, model.time.lumped);
 }
 
-/// The stable step of @p structure with the model's springs: a spring k on a
-/// node of lumped mass m adds k / m to omega^2 there, so the bound
-/// omega_max = 2 / dt_s of the structure becomes sqrt((2 / dt_s)^2 + k / m).
+/// The stable step of @p structure with the model's springs and contact
+/// penalties: a spring k on a node of lumped mass m adds k / m to omega^2
+/// there, so the bound omega_max = 2 / dt_s of the structure becomes
+/// sqrt((2 / dt_s)^2 + k / m); the contact's bound (penaltyOmega2) adds to
+/// the springs' (a node with both: their sum, or less).
 double stableWithSprings(const Model& model, const Structure& structure, double dt) {
-  if (model.springs.empty())
+  if (model.springs.empty() && model.contact.empty())
     return dt;
   const SparseMatrix& M = structure.mass();
+  auto lumped = [&M](int d) {
+    double m = 0;
+    for (SparseMatrix::InnerIterator it(M, d); it; ++it)
+      m += it.value();
+    return m;
+  };
   double w2 = 0;
   for (const auto& s : model.springs)
-    for (int d : s->dofs()) {
-      double m = 0;
-      for (SparseMatrix::InnerIterator it(M, d); it; ++it)
-        m += it.value();
-      w2 = std::max(w2, s->stiffness() / m);
-    }
+    for (int d : s->dofs())
+      w2 = std::max(w2, s->stiffness() / lumped(d));
+  if (!model.contact.empty())
+    w2 += penaltyOmega2(model.contact, lumpedMass(M));
   return 2 / std::sqrt(4 / (dt * dt) + w2);
 }
 
@@ -66,6 +81,11 @@ Simulation::Simulation(const Model& model)
   state_.u = model.u0.size() == ndof ? model.u0 : Eigen::VectorXd::Zero(ndof);
   state_.v = model.v0.size() == ndof ? model.v0 : Eigen::VectorXd::Zero(ndof);
   cons_.prescribe(0.0, state_.v);
+  if (!model.contact.empty()) {
+    loads_.setLumpedMass(lumpedMass(structure_->mass())); // the friction's cap
+    state_.surfaces = initialMotion(model.contact);
+    penetration_.resize(model.contact.size());
+  }
   structure_->beginStep(0.0, 0.0); // a law meets the initial displacements instantaneously
   integrator_->init(state_);
   structure_->commitStep();
@@ -73,9 +93,28 @@ Simulation::Simulation(const Model& model)
   const Energy e = energy();
   e0_ = e.kinetic + e.strain;
   structure_->checkFailure(state_.t, state_.u, failure_);
+  checkPenetration();
 }
 
 Simulation::~Simulation() = default;
+
+void Simulation::checkPenetration() {
+  const Eigen::VectorXd& depth = integrator_->forces().contact.depth;
+  for (size_t k = 0; k < penetration_.size(); ++k) {
+    const double d = depth[static_cast<Eigen::Index>(2 * k)];
+    if (!(d > penetration_[k].depth))
+      continue;
+    const int node = static_cast<int>(depth[static_cast<Eigen::Index>(2 * k + 1)]);
+    penetration_[k] = {d, state_.t, node};
+    const ContactSurface& s = model_.contact[k];
+    if (d > s.tolerance)
+      throw DivergenceError(
+          "rigid_surface '" + s.name + "': node " + std::to_string(model_.mesh.nodeLabel(node)) +
+          " is " + core::formatShort(d) + " m inside it at t = " + core::formatShort(state_.t) +
+          " s (step " + std::to_string(state_.step) + "), beyond its penetration_tolerance " +
+          core::formatShort(s.tolerance) + " m: raise its penalty (or the tolerance)");
+  }
+}
 
 void Simulation::step() {
   structure_->beginStep(integrator_->timeAt(state_.step + 1), integrator_->timeStep());
@@ -87,6 +126,7 @@ void Simulation::step() {
     structure_->checkFailure(state_.t, state_.u, failure_);
   if (structure_->hasHistory() && state_.step % kStableStepEvery == 0)
     adaptStep();
+  checkPenetration();
 }
 
 void Simulation::adaptStep() {
@@ -150,6 +190,16 @@ void Simulation::save(History& h) const {
   structure_->saveHistory(h);
   if (structure_->hasHistory()) // the adapted stable step (the summary reports it)
     h["structure/stable_dt"] = Eigen::VectorXd::Constant(1, stable_dt_);
+  if (!model_.contact.empty()) {
+    const SurfaceMotion& m = state_.surfaces;
+    h["state/surfaces"] = (Eigen::VectorXd(3 * m.u.size()) << m.u, m.v, m.a).finished();
+    h["contact/work"] = Eigen::VectorXd::Constant(1, works_.contact);
+    Eigen::VectorXd p(3 * static_cast<Eigen::Index>(penetration_.size()));
+    for (size_t k = 0; k < penetration_.size(); ++k)
+      p.segment<3>(3 * static_cast<Eigen::Index>(k)) =
+          Eigen::Vector3d(penetration_[k].depth, penetration_[k].time, penetration_[k].node);
+    h["contact/penetration"] = p;
+  }
 }
 
 namespace {
@@ -227,11 +277,37 @@ void Simulation::restore(const History& h, long last_step) {
   const Eigen::VectorXd& w = historyEntry(h, "works", 6);
   works_ = Works{w[0], w[1], w[2], w[3], w[4], w[5]};
   restoreFailure(h);
+  restoreContact(h);
   structure_->restoreHistory(h);
   if (structure_->hasHistory()) {
     stable_dt_ = historyEntry(h, "structure/stable_dt", 1)[0];
     if (!(stable_dt_ > 0))
       throw Error("checkpoint entry 'structure/stable_dt' must be > 0");
+  }
+}
+
+void Simulation::restoreContact(const History& h) {
+  if (model_.contact.empty()) {
+    for (const char* key : {"state/surfaces", "contact/work", "contact/penetration"})
+      if (h.count(key))
+        throw Error(std::string("checkpoint has an entry '") + key + "' this run does not have");
+    return;
+  }
+  const auto ns = static_cast<Eigen::Index>(model_.contact.size());
+  const Eigen::VectorXd& m = historyEntry(h, "state/surfaces", 9 * ns);
+  state_.surfaces = {m.segment(0, 3 * ns), m.segment(3 * ns, 3 * ns), m.segment(6 * ns, 3 * ns)};
+  works_.contact = historyEntry(h, "contact/work", 1)[0];
+  const Eigen::VectorXd& p = historyEntry(h, "contact/penetration", 3 * ns);
+  for (Eigen::Index k = 0; k < ns; ++k) {
+    const double depth = p[3 * k], t = p[3 * k + 1];
+    const auto node =
+        historyInteger(h, "contact/penetration", 3 * ns, 3 * k + 2, -1, model_.mesh.numNodes() - 1);
+    if (!(depth >= 0) || !(t >= 0 && t <= state_.t) || (node < 0) != (depth == 0))
+      throw Error("checkpoint entry 'contact/penetration' holds the depth " +
+                  core::formatShort(depth) + " m at t = " + core::formatShort(t) + " s, node " +
+                  std::to_string(node) + " for rigid_surface '" +
+                  model_.contact[static_cast<size_t>(k)].name + "'");
+    penetration_[static_cast<size_t>(k)] = {depth, t, static_cast<int>(node)};
   }
 }
 
@@ -276,6 +352,9 @@ std::vector<Eigen::Vector3d> Simulation::reactionSums() const {
   auto s = cons_.sums(integrator_->forces().reaction);
   for (const auto& f : loads_.springSums(state_.u))
     s.push_back(f);
+  const Eigen::VectorXd& c = integrator_->forces().contact.sum;
+  for (Eigen::Index k = 0; k < c.size() / 3; ++k)
+    s.emplace_back(c.segment<3>(3 * k));
   return s;
 }
 
@@ -285,6 +364,8 @@ std::vector<std::string> Simulation::reactionNames() const {
     names.push_back(c.name);
   for (const auto& s : model_.springs)
     names.push_back(s->name());
+  for (const auto& s : model_.contact)
+    names.push_back(s.name);
   return names;
 }
 

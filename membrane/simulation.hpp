@@ -13,13 +13,14 @@
 /// time.safety x the structure's stable step. When a section's law carries
 /// history (structure.hpp), the step follows the law's instantaneous
 /// stiffness at the current state: every kStableStepEvery steps it becomes
-/// time.safety x the current stable step (at most time.dt when given).
+/// time.safety x the current stable step (at most time.dt when given). The
+/// stable step includes the springs' and the contact penalties' stiffness.
 
 #include "membrane/integrators/energy.hpp"
 #include "membrane/integrators/time_integrator.hpp"
+#include "membrane/model/structure.hpp"
 #include "membrane/system/load_set.hpp"
 #include "membrane/system/model.hpp"
-#include "membrane/model/structure.hpp"
 
 #include <Eigen/Dense>
 
@@ -61,10 +62,13 @@ public:
   /// @return energy at t = 0 (T + U)
   double initialEnergy() const { return e0_; }
   /// @return reaction force summed per constraint set, then per spring set
-  /// (the springs' force on the structure) (N), current step
+  /// (the springs' force on the structure), then per rigid surface (its
+  /// contact force on the membrane) (N), current step
   std::vector<Eigen::Vector3d> reactionSums() const;
-  /// @return the names of the reaction sets (constraints, then springs)
+  /// @return the names of the reaction sets (constraints, springs, rigid surfaces)
   std::vector<std::string> reactionNames() const;
+  /// @return per rigid surface, the deepest penetration so far
+  const std::vector<PenetrationPeak>& penetration() const { return penetration_; }
   /// @return the stable step of explicit central differences (s, no safety factor)
   double stableStep() const { return stable_dt_; }
   /// @return the failure record (empty time list without thresholds)
@@ -116,6 +120,13 @@ private:
   void restoreIntegrator(const History& h);
   /// restore()'s failure record: element indices, criteria and times checked.
   void restoreFailure(const History& h);
+  /// Updates the deepest penetration per rigid surface from the current
+  /// forces; throws lamina::DivergenceError naming the surface, node, time
+  /// and depth when one exceeds its penetration_tolerance.
+  void checkPenetration();
+  /// restore()'s contact entries: the surfaces' motion, the contact work
+  /// and the deepest penetrations.
+  void restoreContact(const History& h);
   const Model& model_;
   std::unique_ptr<Structure> structure_;
   LoadSet loads_;
@@ -124,6 +135,7 @@ private:
   State state_;
   Works works_;
   FailureRecord failure_;
+  std::vector<PenetrationPeak> penetration_; // per rigid surface
   double e0_ = 0, u0_ = 0, stable_dt_ = 0;
 };
 

@@ -40,6 +40,7 @@ CentralDifference::CentralDifference(const Model& model, const Structure& struct
 }
 
 void CentralDifference::evaluate(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                                 const Eigen::VectorXd& su, const Eigen::VectorXd& sv,
                                  StateForces& f) {
   const int ndof = structure_.numDofs();
   // Without loads or drag their forces stay the zero vectors of the first call.
@@ -53,18 +54,21 @@ void CentralDifference::evaluate(double t, const Eigen::VectorXd& u, const Eigen
     loads_.springs(u, f.spring);
   if (damping_ > 0)
     f.damping = -damping_ * m_.cwiseProduct(v);
+  if (loads_.hasContact())
+    loads_.contact(u, v, su, sv, f.contact);
   structure_.internalForce(u, f.internal);
 }
 
 namespace {
-/// The force of a = m^-1 (F_ext + F_drag + F_s + F_damp - f_int), DOF by DOF;
-/// absent terms are null (a zero external force or drag adds +0 exactly).
+/// The force of a = m^-1 (F_ext + F_drag + F_s + F_damp + F_c - f_int), DOF
+/// by DOF; absent terms are null (a zero external force or drag adds +0 exactly).
 struct ForceTotal {
-  const double *ext, *drag, *fi, *spring, *damp;
+  const double *ext, *drag, *fi, *spring, *damp, *contact;
   ForceTotal(const StateForces& f, bool external, bool drag_force)
       : ext(external ? f.external.data() : nullptr), drag(drag_force ? f.drag.data() : nullptr),
         fi(f.internal.data()), spring(f.spring.size() ? f.spring.data() : nullptr),
-        damp(f.damping.size() ? f.damping.data() : nullptr) {}
+        damp(f.damping.size() ? f.damping.data() : nullptr),
+        contact(f.contact.force.size() ? f.contact.force.data() : nullptr) {}
   double operator()(int i) const {
     // The sum ext + drag - fi of every step, with +0 for an absent term.
     double t = ((ext ? ext[i] : 0.0) + (drag ? drag[i] : 0.0)) - fi[i];
@@ -72,6 +76,8 @@ struct ForceTotal {
       t += spring[i];
     if (damp)
       t += damp[i];
+    if (contact)
+      t += contact[i];
     return t;
   }
 };
@@ -111,13 +117,17 @@ void CentralDifference::reactions(const Eigen::VectorXd& a, StateForces& f) cons
       r -= f.spring[d];
     if (f.damping.size())
       r -= f.damping[d];
+    if (f.contact.force.size())
+      r -= f.contact.force[d];
     f.reaction[static_cast<Eigen::Index>(k)] = r;
   }
 }
 
 void CentralDifference::init(State& s) {
-  evaluate(s.t, s.u, s.v, cur_);
+  evaluate(s.t, s.u, s.v, s.surfaces.u, s.surfaces.v, cur_);
   accelerate(cur_, s.a);
+  if (loads_.hasContact())
+    setAccelerations(model_.contact, cur_.contact.sum, s.surfaces.a);
   for (int d : cons_.dofs())
     s.a[d] = 0;
   reactions(s.a, cur_);
@@ -179,8 +189,10 @@ void CentralDifference::step(State& s) {
     du_[d] = u1_[d] - s.u[d];
     non_finite += !std::isfinite(u1_[d]);
   }
+  if (loads_.hasContact())
+    predictMotion(model_.contact, s.surfaces, t1, dt, surf1_.u, svh_);
   StateForces& next = prev_; // a_{n-1}'s forces are no longer needed
-  evaluate(t1, u1_, vh_, next);
+  evaluate(t1, u1_, vh_, surf1_.u, svh_, next);
   a1_.resize(n);
   v1_.resize(n);
   const ForceTotal total(next, loads_.hasExternal(), loads_.hasDrag());
@@ -206,12 +218,27 @@ void CentralDifference::step(State& s) {
     a1_[d] = (v1_[d] - s.v[d]) / dt_;
     non_finite += !std::isfinite(v1_[d]) || !std::isfinite(a1_[d]);
   }
+  if (loads_.hasContact())
+    non_finite += finishSurfaces(next);
   if (non_finite > 0)
     throwNonFinite(model_.mesh, s, t1, u1_, v1_, a1_,
                    "; the explicit step may exceed the stable step");
   reactions(a1_, next);
   commitStep(s, t1, u1_, v1_, a1_);
+  if (loads_.hasContact())
+    std::swap(s.surfaces, surf1_);
   std::swap(prev_, cur_);
+}
+
+int CentralDifference::finishSurfaces(const StateForces& f) {
+  // Prescribed surfaces: a = 0 and v1 = vh = their velocity, exactly.
+  setAccelerations(model_.contact, f.contact.sum, surf1_.a);
+  surf1_.v = svh_ + (0.5 * dt_) * surf1_.a;
+  int non_finite = 0;
+  for (Eigen::Index i = 0; i < surf1_.v.size(); ++i)
+    non_finite +=
+        !std::isfinite(surf1_.u[i]) || !std::isfinite(surf1_.v[i]) || !std::isfinite(surf1_.a[i]);
+  return non_finite;
 }
 
 } // namespace lamina::membrane

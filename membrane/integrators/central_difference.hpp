@@ -8,10 +8,13 @@
 ///   v_{n+1/2} = v_n + dt/2 a_n      (prescribed velocity at t_n + dt/2 on constrained DOFs)
 ///   u_{n+1}   = u_n + dt v_{n+1/2}
 ///   m a_{n+1} = F_ext(t_{n+1}, u_{n+1}) + F_drag(u_{n+1}, v_{n+1/2}) + F_s(u_{n+1})
-///               - c m v_{n+1/2} - f_int(u_{n+1})
+///               + F_c(u_{n+1}, v_{n+1/2}) - c m v_{n+1/2} - f_int(u_{n+1})
 ///   v_{n+1}   = v_{n+1/2} + dt/2 a_{n+1}   (prescribed velocity at t_{n+1} on constrained DOFs)
 /// Velocity-dependent forces (drag, damping c) use the mid-step velocity
-/// (explicit; first order in them, exact at a steady state). A rigid set
+/// (explicit; first order in them, exact at a steady state). The rigid
+/// surfaces in contact (F_c, loads/contact.hpp) take the same step: a free
+/// body's d_{n+1} = d_n + dt (v_n + dt/2 a_n), its a_{n+1} from the contact
+/// forces at t_{n+1}; a prescribed one is at v t_{n+1}. A rigid set
 /// takes one acceleration: its total force over its total mass. Reactions
 /// R = m a + f_int - F at the constrained DOFs, a = (v_{n+1} - v_n) / dt
 /// there. Stable for dt <= the structure's stableStep() (Courant); the
@@ -25,8 +28,8 @@
 
 #include "core/error.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/system/load_set.hpp"
 #include "membrane/model/structure.hpp"
+#include "membrane/system/load_set.hpp"
 
 #include <vector>
 
@@ -58,7 +61,14 @@ public:
   void restoreHistory(const History& h) override;
 
 private:
-  void evaluate(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v, StateForces& f);
+  /// The forces at time @p t, membrane displacements @p u and velocities
+  /// @p v, surfaces' displacements @p su and velocities @p sv.
+  void evaluate(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                const Eigen::VectorXd& su, const Eigen::VectorXd& sv, StateForces& f);
+  /// The second half of the surfaces' step, once the forces @p f at t_{n+1}
+  /// are known: their accelerations and velocities at t_{n+1} into surf1_
+  /// (which holds the displacements); @return the count of non-finite values.
+  int finishSurfaces(const StateForces& f);
   void accelerate(const StateForces& f, Eigen::VectorXd& a) const;
   void reactions(const Eigen::VectorXd& a, StateForces& f) const;
 
@@ -73,6 +83,8 @@ private:
   std::vector<double> rigid_mass_;
   StateForces cur_, prev_;
   Eigen::VectorXd vh_, u1_, v1_, a1_, du_;
+  SurfaceMotion surf1_; // the surfaces at t_{n+1}
+  Eigen::VectorXd svh_; // and their mid-step velocities
 };
 
 } // namespace lamina::membrane

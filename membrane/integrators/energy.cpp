@@ -43,6 +43,8 @@ void Works::add(const Eigen::VectorXd& du, const StateForces& f0, const StateFor
     damping += halfWork(du, f0.damping, f1.damping);
   if (f1.internal.size())
     internal += halfWork(du, f0.internal, f1.internal);
+  if (f1.contact.force.size())
+    contact += halfWork(du, f0.contact.force, f1.contact.force);
   for (size_t k = 0; k < cons.size(); ++k) {
     const auto i = static_cast<Eigen::Index>(k);
     reaction += 0.5 * du[cons.dofs()[k]] * (f0.reaction[i] + f1.reaction[i]);
@@ -58,9 +60,10 @@ Energy Works::energy(double T, double U, double e0, double D, double D_in) const
   e.drag_work = drag;
   e.spring_work = spring;
   e.damping_work = damping;
+  e.contact_work = contact;
   e.wrinkling_dissipation = D;
   e.inelastic_dissipation = D_in;
-  e.balance = T + U + D + D_in - e0 - external - reaction - drag - spring - damping;
+  e.balance = T + U + D + D_in - e0 - external - reaction - drag - spring - damping - contact;
   return e;
 }
 

@@ -4,15 +4,18 @@
 ///
 /// Works by the trapezoidal rule over each step,
 ///   W += (u_{n+1} - u_n).(F_n + F_{n+1}) / 2,
-/// for the external loads, the drag, the springs, the damping and the
-/// reactions (at constrained DOFs); balance = T + U + D - E_0 - W. U is the
+/// for the external loads, the drag, the springs, the damping, the contact
+/// of the rigid surfaces and the reactions (at constrained DOFs);
+/// balance = T + U + D - E_0 - W. The contact work is that of the contact
+/// forces on the membrane: a free rigid body (a sphere) is outside the
+/// system, its force on the membrane an input like a load. U is the
 /// stored strain energy, a function of the state. When the internal force is
 /// not the gradient of U (tension-only fabric: the wrinkling law is not
 /// conservative), D = W_int - (U - U_0) is the internal work W_int (integrated
 /// the same way) that U does not hold: the wrinkling dissipation, < 0 when the
 /// law generates energy. A nonlinear law's inelastic dissipation D_in (its
-/// own bookkeeping, law_point.hpp) enters the balance beside D. For the paper's Newmark scheme (beta1 = beta2 = 1/2,
-/// alpha = 0) the balance is zero in exact arithmetic. The dot products of
+/// own bookkeeping, law_point.hpp) enters the balance beside D. For the paper's Newmark scheme
+/// (beta1 = beta2 = 1/2, alpha = 0) the balance is zero in exact arithmetic. The dot products of
 /// the works are threaded on large models (on one thread Eigen's, unchanged).
 
 #include "membrane/integrators/time_integrator.hpp"
@@ -37,6 +40,7 @@ struct Energy {
   /// The work of the stress that the sections' laws do not store (GVBO, a
   /// reduced-order cell), from their own history; >= 0 for a dissipative law
   double inelastic_dissipation = 0;
+  double contact_work = 0; ///< work of the rigid surfaces' contact forces on the membrane (J)
 };
 
 /// The works accumulated over the steps of one run.
@@ -47,6 +51,7 @@ struct Works {
   double spring = 0;   ///< springs (J)
   double damping = 0;  ///< damping (J)
   double internal = 0; ///< internal force, sum of du.f_int (J; when the scheme keeps f_int)
+  double contact = 0;  ///< contact forces of the rigid surfaces on the membrane (J)
 
   /// Adds one step: displacement increment @p du, forces @p f0 at its start
   /// and @p f1 at its end; @p external and @p drag say whether those forces exist.

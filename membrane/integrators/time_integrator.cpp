@@ -18,6 +18,9 @@ void forEachForce(F& f, Fn&& fn) {
   fn("spring", f.spring);
   fn("damping", f.damping);
   fn("internal", f.internal);
+  fn("contact", f.contact.force);
+  fn("contact_sum", f.contact.sum);
+  fn("contact_depth", f.contact.depth);
 }
 } // namespace
 

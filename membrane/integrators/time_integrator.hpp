@@ -29,6 +29,7 @@
 /// model puts it back, after which step() continues bit for bit as the
 /// scheme that saved it would have.
 
+#include "membrane/loads/contact.hpp"
 #include "membrane/model/history.hpp"
 #include "membrane/model/mesh.hpp"
 
@@ -41,11 +42,12 @@ namespace lamina::membrane {
 
 /// The state of the system at one time: what a checkpoint must hold.
 struct State {
-  double t = 0;      ///< time (s)
-  long step = 0;     ///< steps taken
-  Eigen::VectorXd u; ///< displacements (m), 3 per node
-  Eigen::VectorXd v; ///< velocities (m/s)
-  Eigen::VectorXd a; ///< accelerations (m/s^2)
+  double t = 0;           ///< time (s)
+  long step = 0;          ///< steps taken
+  Eigen::VectorXd u;      ///< displacements (m), 3 per node
+  Eigen::VectorXd v;      ///< velocities (m/s)
+  Eigen::VectorXd a;      ///< accelerations (m/s^2)
+  SurfaceMotion surfaces; ///< the rigid surfaces' motion (contact.hpp; empty: none)
 };
 
 /// Forces acting at one state.
@@ -56,6 +58,7 @@ struct StateForces {
   Eigen::VectorXd spring;   ///< springs to the ground (N; empty: none)
   Eigen::VectorXd damping;  ///< mass-proportional damping -c M v (N; empty: none)
   Eigen::VectorXd internal; ///< internal force f_int (N; empty: not kept by the scheme)
+  ContactResult contact;    ///< rigid surfaces' contact forces and sums (empty: none)
 };
 
 /// Linear-solver statistics of a scheme (zero for explicit schemes).

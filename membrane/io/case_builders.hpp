@@ -67,6 +67,9 @@ Mesh readMesh(const core::TableReader& r, const std::filesystem::path& case_path
 void readSections(const core::TableReader& root, const MaterialSources& sources, Model& model);
 /// [time], [solver] and [output] (case_settings.cpp).
 void readTimeAndOutput(const core::TableReader& root, Model& model);
+/// Refuses what only the explicit integrator takes (rigid surfaces) under
+/// Newmark (case_settings.cpp).
+void checkIntegrator(const core::TableReader& root, const Model& model);
 /// [[probe]] (case_settings.cpp).
 void readProbes(const core::TableReader& root, Model& model);
 /// [[fixed]] and [[strike]] (case_constraints.cpp); @return the constraint
@@ -77,6 +80,9 @@ void readSprings(const core::TableReader& root, Model& model);
 /// [[rigid]] (case_constraints.cpp): the selected nodes translate together;
 /// @p owner is readConstraints()' DOF owner list, extended.
 void readRigidSets(const core::TableReader& root, Model& model, std::vector<int>& owner);
+/// [[rigid_surface]] (case_contact.cpp): rigid bodies the membrane rests
+/// on; after the constraints and springs (their names must differ).
+void readRigidSurfaces(const core::TableReader& root, Model& model);
 /// [initial] (case_constraints.cpp): initial velocity (optional).
 void readInitial(const core::TableReader& root, Model& model);
 /// [[load]], [[point_mass]] and [gravity] (case_loads.cpp).

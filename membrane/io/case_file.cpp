@@ -59,6 +59,8 @@ Model buildModel(const toml::table& doc, const std::filesystem::path& path,
     root.fail("compare_without_drag", "needs at least one [[drag]] table");
   readSprings(root, model);
   readRigidSets(root, model, owner);
+  readRigidSurfaces(root, model);
+  checkIntegrator(root, model);
   readInitial(root, model);
   readProbes(root, model);
   root.finish();

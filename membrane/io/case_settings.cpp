@@ -135,6 +135,12 @@ void readTimeAndOutput(const core::TableReader& root, Model& model) {
   readOutput(root, model);
 }
 
+/// Features only the explicit integrator has.
+void checkIntegrator(const core::TableReader& root, const Model& model) {
+  if (model.time.integrator != IntegratorKind::Explicit && !model.contact.empty())
+    root.fail("rigid_surface", "rigid_surface needs time.integrator = \"explicit\"");
+}
+
 /// [[probe]].
 void readProbes(const core::TableReader& root, Model& model) {
   const Mesh& mesh = model.mesh;

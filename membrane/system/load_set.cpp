@@ -50,4 +50,9 @@ std::vector<Eigen::Vector3d> LoadSet::springSums(const Eigen::VectorXd& u) const
   return out;
 }
 
+void LoadSet::contact(const Eigen::VectorXd& u, const Eigen::VectorXd& v, const Eigen::VectorXd& su,
+                      const Eigen::VectorXd& sv, ContactResult& out) const {
+  contactForces(model_.contact, model_.mesh, {u, v, su, sv, mass_, step_}, out);
+}
+
 } // namespace lamina::membrane

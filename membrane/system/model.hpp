@@ -3,8 +3,8 @@
 /// @brief A membrane problem fully resolved against its mesh: the body
 /// (mesh, sections per region, point masses; model/body.hpp), constrained
 /// DOFs, load patterns with time profiles, drag, springs, rigid sets,
-/// probes and the time-stepping settings. Built from a case file by
-/// case_file.hpp, or directly by tests.
+/// rigid surfaces in contact, probes and the time-stepping settings. Built
+/// from a case file by case_file.hpp, or directly by tests.
 ///
 /// Units SI. Forces are nodal force vectors of length 3 * nodes (N), the
 /// DOF numbering of assembly.hpp. The pieces live by floor: the body and the
@@ -13,6 +13,7 @@
 /// acts on it (its forces, reactions and works for the integrators) belongs.
 
 #include "core/enum_names.hpp"
+#include "membrane/loads/contact.hpp"
 #include "membrane/loads/ground_springs.hpp"
 #include "membrane/loads/load.hpp"
 #include "membrane/loads/surface_load.hpp"
@@ -109,6 +110,7 @@ struct Model : Body {
       surface_loads; ///< configuration-dependent loads (pressures, drag)
   std::vector<std::shared_ptr<const GroundSprings>> springs; ///< springs to the ground
   std::vector<RigidSet> rigid;                               ///< rigid translating sets
+  std::vector<ContactSurface> contact;                       ///< rigid surfaces in contact
   std::vector<Probe> probes;                                 ///< probes
   TimeSettings time;                                         ///< time stepping
   OutputSettings output;                                     ///< outputs

@@ -130,6 +130,57 @@ field_every = 7
 energy_every = 3
 )";
 
+/// The large-deflection membrane with rigid surfaces that carry state: a
+/// free sphere (its position and velocity) dropped on it and a plane with
+/// friction under it, contact damping, gravity; the stop falls during the
+/// sphere's contact.
+const char* kContact = R"(
+model = "large_deflection"
+[mesh]
+type = "rectangle"
+Lx = 1.0
+nx = 10
+[[section]]
+E = 1.0e6
+nu = 0.3
+density = 100.0
+thickness = 1.0e-3
+prestress = 100.0
+[time]
+integrator = "explicit"
+safety = 0.5
+t_end = 0.03
+[[fixed]]
+nodes = "edges"
+[gravity]
+g = [0.0, 0.0, -9.81]
+[[rigid_surface]]
+name = "ball"
+shape = "sphere"
+center = [0.5, 0.5, 0.102]
+radius = 0.1
+mass = 0.1
+velocity = [0.3, 0.0, -2.0]
+penalty = 1.0e4
+friction = 0.2
+contact_damping = 0.1
+penetration_tolerance = 0.01
+[[rigid_surface]]
+name = "floor"
+shape = "plane"
+point = [0.0, 0.0, -0.01]
+normal = [0.0, 0.0, 1.0]
+penalty = 1.0e4
+friction = 0.5
+penetration_tolerance = 0.05
+[[probe]]
+name = "centre"
+at = [0.5, 0.5]
+[output]
+field_every = 7
+energy_every = 3
+)";
+
 /// Runs @p model uninterrupted into DIR/full; @return its options.
 RunOptions runFull(const Model& model, const fs::path& dir, long& steps) {
   RunOptions full;
@@ -185,6 +236,14 @@ TEST(Restart, GvboSectionsContinueBitIdentically) {
   const Checkpoint c = readCheckpoint(checkpointPath(dir.path));
   const Eigen::VectorXd& step = c.data.at("integrator/step");
   EXPECT_GT(step[2], 0.0) << "no change of step before the stop";
+}
+
+TEST(Restart, ContactWithAFreeSphereContinuesBitIdentically) {
+  const Model model = test::modelFromText(kContact, "restart-contact.toml");
+  const test::Folder dir("restart-contact-probe");
+  long steps = 0;
+  runFull(model, dir.path, steps);
+  expectRestartIdentical(kContact, steps / 2, "restart-contact");
 }
 
 // kill -9 after a periodic checkpoint: the tables already hold rows written
