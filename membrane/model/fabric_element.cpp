@@ -1,7 +1,5 @@
 #include "membrane/model/fabric_element.hpp"
 
-#include "membrane/model/relaxed_wrinkling.hpp"
-
 #include <cmath>
 
 namespace lamina::membrane {

@@ -33,6 +33,7 @@
 
 #include "materials/stiffness.hpp"
 #include "membrane/model/mesh.hpp"
+#include "membrane/model/relaxed_wrinkling.hpp"
 #include "membrane/model/section.hpp"
 
 #include <Eigen/Dense>
@@ -51,13 +52,6 @@ struct FabricElement {
   std::array<Eigen::Vector2d, 3> dN; ///< shape-function gradients in the element frame (1/m)
   double area0 = 0;                  ///< reference area (m^2)
   Eigen::Matrix3d frame;             ///< columns e1, e2, e3 of the reference frame
-};
-
-/// Wrinkling state of an element.
-enum class Wrinkle : int {
-  Taut = 0,     ///< both principal stresses >= 0
-  Wrinkled = 1, ///< one compressive principal stress removed
-  Slack = 2,    ///< no stress
 };
 
 /// Kinematics and stress of one element at one configuration.

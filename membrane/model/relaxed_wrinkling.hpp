@@ -41,11 +41,16 @@
 /// the law is hyperelastic, its work around a closed strain cycle is zero
 /// and the stored energy (S.C^-1 S - S0.C^-1 S0) / 2 is its potential.
 
-#include "membrane/model/fabric_element.hpp"
-
 #include <Eigen/Dense>
 
 namespace lamina::membrane {
+
+/// Wrinkling state of an element.
+enum class Wrinkle : int {
+  Taut = 0,     ///< both principal stresses >= 0
+  Wrinkled = 1, ///< uniaxial tension: one principal stress zero (relaxed) or removed (projection)
+  Slack = 2,    ///< no stress
+};
 
 /// The relaxed stress at one strain, with the wrinkling strain that gives it.
 struct RelaxedStress {
