@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <vector>
 
 namespace lamina::membrane {
 
@@ -73,27 +72,37 @@ Trial rootOfStationarity(Trial a, Trial b, const Eigen::Vector3d& St, const Eige
 
 /// The samples of the wrinkle direction over [lo, hi] (count + 1 of them) and
 /// the root of the stationarity next to the least energy among them; false
-/// when r does not change sign from - to + beside it.
+/// when r does not change sign from - to + beside it. Keeps only the best
+/// sample and its neighbours (no allocation: it runs per element and step).
 bool searchDirection(double lo, double hi, int count, const Eigen::Vector3d& St,
                      const Eigen::Matrix3d& C, Trial& out) {
-  std::vector<Trial> t;
-  t.reserve(static_cast<size_t>(count) + 1);
-  for (int i = 0; i <= count; ++i)
-    t.push_back(trialAt(lo + (hi - lo) * i / count, St, C));
-  size_t j = 0;
-  for (size_t i = 1; i < t.size(); ++i)
-    if (t[i].f < t[j].f)
-      j = i;
-  if (t[j].r == 0) {
-    out = t[j];
+  Trial prev, left, best, right;
+  bool has_left = false, has_right = false, pending = false;
+  for (int i = 0; i <= count; ++i) {
+    const Trial cur = trialAt(lo + (hi - lo) * i / count, St, C);
+    if (i == 0 || cur.f < best.f) {
+      left = prev;
+      has_left = i > 0;
+      best = cur;
+      has_right = false;
+      pending = true;
+    } else if (pending) {
+      right = cur;
+      has_right = true;
+      pending = false;
+    }
+    prev = cur;
+  }
+  if (best.r == 0) {
+    out = best;
     return true;
   }
-  if (t[j].r > 0 && j > 0 && t[j - 1].r < 0) {
-    out = rootOfStationarity(t[j - 1], t[j], St, C);
+  if (best.r > 0 && has_left && left.r < 0) {
+    out = rootOfStationarity(left, best, St, C);
     return true;
   }
-  if (t[j].r < 0 && j + 1 < t.size() && t[j + 1].r > 0) {
-    out = rootOfStationarity(t[j], t[j + 1], St, C);
+  if (best.r < 0 && has_right && right.r > 0) {
+    out = rootOfStationarity(best, right, St, C);
     return true;
   }
   return false;

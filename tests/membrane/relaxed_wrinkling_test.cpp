@@ -238,7 +238,9 @@ double cycleWork(const std::vector<Eigen::Vector3d>& corners, const Eigen::Matri
 // direction turns along the path). Then a cycle through all three states
 // (taut, wrinkled, slack): the stress has kinks at the state boundaries
 // (W_rel is C^1 there, not C^2), where Gauss errs by O(h^2 |C|) a kink;
-// tolerance 1e-6 of |C| times the path's length squared.
+// tolerance 1e-8 of |C| times the path's length squared (~0.4 J/m^3;
+// measured 0.007 and 0.01 J/m^3 with 2000 pieces a side, 1e-11 on the
+// rectangles).
 TEST(RelaxedWrinkling, WorkAroundClosedCyclesIsZero) {
   for (const bool iso : {true, false}) {
     const Eigen::Matrix3d C = iso ? isotropic(580e6, 0.3) : anisotropic();
@@ -265,7 +267,7 @@ TEST(RelaxedWrinkling, WorkAroundClosedCyclesIsZero) {
     }
     for (int s : states)
       EXPECT_GT(s, 10); // the tour visits every state
-    EXPECT_NEAR(cycleWork(tour, C, 2000, -1), 0.0, 1e-6 * C.norm() * length * length);
+    EXPECT_NEAR(cycleWork(tour, C, 2000, -1), 0.0, 1e-8 * C.norm() * length * length);
   }
 }
 
