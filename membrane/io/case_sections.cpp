@@ -27,8 +27,8 @@ namespace lamina::membrane::case_io {
 namespace {
 
 /// The large-deflection keys of a [[section]].
-constexpr std::array<const char*, 5> kFabricKeys = {"material_axis", "prestress", "tension_only",
-                                                    "failure_strain", "failure_stress"};
+constexpr std::array<const char*, 6> kFabricKeys = {
+    "material_axis", "prestress", "tension_only", "wrinkling", "failure_strain", "failure_stress"};
 /// The keys of a [[section]] with an inline law that are not its law's
 /// (with kFabricKeys; the law's own keys are materials::readLawSpec's).
 constexpr std::array<const char*, 5> kOwnKeys = {"region", "density", "thickness", "dispersion",
@@ -217,7 +217,8 @@ void readMicroInertia(const core::TableReader& r, bool named, Section& s) {
 }
 
 /// The large-deflection keys of a [[section]] (material axis, pre-stress,
-/// tension_only, failure thresholds); an error under the linear model.
+/// tension_only and its wrinkling law, failure thresholds); an error under
+/// the linear model.
 void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
   for (const char* key : kFabricKeys)
     if (kind == ModelKind::Linear && r.has(key))
@@ -247,6 +248,12 @@ void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
       r.fail("prestress", "needs an elastic law: " + s.material + " starts unstressed");
   }
   s.tension_only = r.getBool("tension_only", false);
+  s.wrinkling = r.getChoice("wrinkling", kWrinklingLawNames, WrinklingLaw::Relaxed);
+  if (r.has("wrinkling") && !s.tension_only)
+    r.fail("wrinkling", "chooses the law of a tension-only section: it needs tension_only = true");
+  if (s.wrinkling == WrinklingLaw::Projection && !s.isLinear())
+    r.fail("wrinkling", "\"projection\" needs an elastic law: " + s.material +
+                            " wrinkles by its stress-free wrinkling strain (\"relaxed\")");
   s.failure_strain = r.getDouble("failure_strain", s.failure_strain);
   s.failure_stress = r.getDouble("failure_stress", s.failure_stress);
   if (!(s.failure_strain > 0))

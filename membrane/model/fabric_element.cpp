@@ -50,9 +50,35 @@ Eigen::Vector2d principal2(double a, double b, double c) {
   return {m + r, m - r};
 }
 
+namespace {
+
+/// The projection law: @p st's stress replaced by its tensile part.
+void project(FabricStress& st) {
+  const double a = st.S[0], b = st.S[1], c = st.S[2];
+  const Eigen::Vector2d s = principal2(a, b, c);
+  if (s[1] >= 0) {
+    st.state = Wrinkle::Taut;
+  } else if (s[0] <= 0) {
+    st.state = Wrinkle::Slack;
+    st.S.setZero();
+  } else {
+    // Keep s1 n n^T, n the major principal direction.
+    st.state = Wrinkle::Wrinkled;
+    Eigen::Vector2d n = std::abs(c) > 0 ? Eigen::Vector2d(c, s[0] - a)
+                        : a >= b        ? Eigen::Vector2d(1, 0)
+                                        : Eigen::Vector2d(0, 1);
+    if (std::abs(c) > 0 && n.norm() < 1e-300)
+      n = {s[0] - b, c};
+    n.normalize();
+    st.S = {s[0] * n.x() * n.x(), s[0] * n.y() * n.y(), s[0] * n.x() * n.y()};
+  }
+}
+
+} // namespace
+
 FabricStress fabricStress(const FabricElement& el, const std::array<Eigen::Vector3d, 3>& x,
                           const Eigen::Matrix3d& Cps, const Eigen::Vector3d& S0,
-                          bool tension_only) {
+                          WrinklingLaw wrinkling) {
   FabricStress st;
   st.F.setZero();
   for (int a = 0; a < 3; ++a)
@@ -60,25 +86,15 @@ FabricStress fabricStress(const FabricElement& el, const std::array<Eigen::Vecto
   const Eigen::Matrix2d C = st.F.transpose() * st.F;
   st.E = {0.5 * (C(0, 0) - 1), 0.5 * (C(1, 1) - 1), C(0, 1)};
   st.S = Cps * st.E + S0;
-  if (tension_only) {
-    const double a = st.S[0], b = st.S[1], c = st.S[2];
-    const Eigen::Vector2d s = principal2(a, b, c);
-    if (s[1] >= 0) {
-      st.state = Wrinkle::Taut;
-    } else if (s[0] <= 0) {
-      st.state = Wrinkle::Slack;
-      st.S.setZero();
-    } else {
-      // Keep s1 n n^T, n the major principal direction.
-      st.state = Wrinkle::Wrinkled;
-      Eigen::Vector2d n = std::abs(c) > 0 ? Eigen::Vector2d(c, s[0] - a)
-                          : a >= b        ? Eigen::Vector2d(1, 0)
-                                          : Eigen::Vector2d(0, 1);
-      if (std::abs(c) > 0 && n.norm() < 1e-300)
-        n = {s[0] - b, c};
-      n.normalize();
-      st.S = {s[0] * n.x() * n.x(), s[0] * n.y() * n.y(), s[0] * n.x() * n.y()};
-    }
+  if (wrinkling == WrinklingLaw::Projection) {
+    project(st);
+  } else if (wrinkling == WrinklingLaw::Relaxed &&
+             !positiveSemidefinite2(st.S[0], st.S[1], st.S[2])) {
+    // E + C^-1 S0: the strain from the stress-free state (C^-1 as LargeDeflection keeps it).
+    const Eigen::Matrix3d Cinv = Cps.inverse();
+    const RelaxedStress rs = relaxedStress(st.S, st.E + Cinv * S0, Cps);
+    st.S = rs.S;
+    st.state = rs.state;
   }
   return st;
 }

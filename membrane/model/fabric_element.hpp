@@ -19,14 +19,22 @@
 /// order), C_ps = C_pp - C_pz C_zz^-1 C_zp (sigma_zz = 0 condensed out; the
 /// transverse shears yz, xz play no part in a tension membrane).
 ///
-/// Tension only (wrinkling): S is replaced by the tensile part of its
-/// spectral decomposition, sum_i max(s_i, 0) n_i n_i^T: a wrinkled element
-/// carries uniaxial tension along its major principal direction, a slack one
-/// nothing. The Cauchy stress F S F^T / J then has no compressive principal
+/// Tension only (wrinkling), two laws (WrinklingLaw):
+/// - relaxed (the default): tension-field theory's relaxed energy
+///   (relaxed_wrinkling.hpp): S = C_ps (E + P) + S0 with the stress-free
+///   wrinkling strain P >= 0 that minimizes the energy; hyperelastic.
+/// - projection: S is replaced by the tensile part of its spectral
+///   decomposition, sum_i max(s_i, 0) n_i n_i^T: a wrinkled element carries
+///   uniaxial tension along its major principal direction, a slack one
+///   nothing. Not the gradient of any energy: its work around a closed
+///   strain cycle is not zero (docs/membrane-large-deflection.md).
+/// Either way the Cauchy stress F S F^T / J has no compressive principal
 /// value (congruence keeps the signs of the eigenvalues).
 
 #include "materials/stiffness.hpp"
 #include "membrane/model/mesh.hpp"
+#include "membrane/model/relaxed_wrinkling.hpp"
+#include "membrane/model/section.hpp"
 
 #include <Eigen/Dense>
 
@@ -46,13 +54,6 @@ struct FabricElement {
   Eigen::Matrix3d frame;             ///< columns e1, e2, e3 of the reference frame
 };
 
-/// Wrinkling state of an element.
-enum class Wrinkle : int {
-  Taut = 0,     ///< both principal stresses >= 0
-  Wrinkled = 1, ///< one compressive principal stress removed
-  Slack = 2,    ///< no stress
-};
-
 /// Kinematics and stress of one element at one configuration.
 struct FabricStress {
   Eigen::Matrix<double, 3, 2> F; ///< deformation gradient
@@ -64,9 +65,10 @@ struct FabricStress {
 /// Builds the reference data of triangle @p e of @p mesh with material axis @p axis.
 FabricElement makeFabricElement(const Mesh& mesh, int e, const Eigen::Vector3d& axis);
 
-/// Evaluates F, E and S at current node positions @p x.
+/// Evaluates F, E and S at current node positions @p x with the wrinkling law @p wrinkling.
 FabricStress fabricStress(const FabricElement& el, const std::array<Eigen::Vector3d, 3>& x,
-                          const Eigen::Matrix3d& Cps, const Eigen::Vector3d& S0, bool tension_only);
+                          const Eigen::Matrix3d& Cps, const Eigen::Vector3d& S0,
+                          WrinklingLaw wrinkling);
 
 /// @return the nodal internal forces (3 x 3, column a = node a) of @p st for thickness @p h.
 Eigen::Matrix3d fabricForces(const FabricElement& el, const FabricStress& st, double h);
@@ -76,7 +78,8 @@ Eigen::Matrix3d fabricForces(const FabricElement& el, const FabricStress& st, do
 /// @p Cinv = C_ps^-1. The elastic strain C_ps^-1 S carries the stress; the rest of
 /// E (the wrinkling strain of a tension-only element) is stress-free and stores
 /// nothing. Equals E.C_ps E / 2 + S0.E for a taut element; >= 0 without pre-stress.
-/// A state function: the work of the tension-only law is not (docs/membrane-large-deflection.md).
+/// With the relaxed law it is the relaxed energy W_rel(E), the potential of S;
+/// the work of the projection law is not a state function (docs/membrane-large-deflection.md).
 double fabricStoredEnergy(const FabricStress& st, const Eigen::Matrix3d& Cinv,
                           const Eigen::Vector3d& S0);
 

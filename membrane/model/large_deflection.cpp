@@ -4,6 +4,7 @@
 #include "core/format.hpp"
 #include "core/parallel.hpp"
 #include "membrane/model/law_point.hpp"
+#include "membrane/model/relaxed_wrinkling.hpp"
 #include "membrane/model/stable_step.hpp"
 
 #include <algorithm>
@@ -28,8 +29,9 @@ LargeDeflection::LargeDeflection(const Body& body) : body_(body) {
     s0_.push_back(s.prestress / s.thickness);
     LAMINA_CHECK(s.isLinear() || s.prestress.isZero(), "section '", s.name, "' (", s.material,
                  "): a pre-stress needs a linear elastic law (a nonlinear law starts unstressed)");
-    any_tension_only_ = any_tension_only_ || s.tension_only;
-    any_linear_tension_only_ = any_linear_tension_only_ || (s.tension_only && s.isLinear());
+    relaxed_.push_back(s.isLinear() && s.wrinklingLaw() == WrinklingLaw::Relaxed ? 1 : 0);
+    any_projection_ =
+        any_projection_ || (s.isLinear() && s.wrinklingLaw() == WrinklingLaw::Projection);
     any_threshold_ =
         any_threshold_ || std::isfinite(s.failure_strain) || std::isfinite(s.failure_stress);
   }
@@ -60,8 +62,9 @@ LargeDeflection::LargeDeflection(const Body& body) : body_(body) {
       p.dN[2 * a] = el.dN[a].x();
       p.dN[2 * a + 1] = el.dN[a].y();
     }
-    // The general path: tension-only or a nonlinear law.
-    p.region = body.sections[r].tension_only || !body.sections[r].isLinear() ? -1 - r : r;
+    // The general path: the projection law or a nonlinear law.
+    const Section& s = body.sections[r];
+    p.region = !s.isLinear() || s.wrinklingLaw() == WrinklingLaw::Projection ? -1 - r : r;
     p.hA = body.sections[r].thickness * el.area0;
   }
   x0_.resize(3 * static_cast<size_t>(n));
@@ -98,12 +101,12 @@ FabricStress LargeDeflection::stress(int e, const Eigen::VectorXd& u) const {
   for (int a = 0; a < 3; ++a)
     x[a] = body_.mesh.point(el.nodes[a]) + u.segment<3>(3 * el.nodes[a]);
   if (const double* b = history(e)) {
-    FabricStress st = fabricStress(el, x, cps_[r], s0_[r], false); // F and E
+    FabricStress st = fabricStress(el, x, cps_[r], s0_[r], WrinklingLaw::None); // F and E
     st.S = lawPointPk2(st.F, b);
     st.state = static_cast<Wrinkle>(static_cast<int>(b[LawPoint::kWrinkleState]));
     return st;
   }
-  return fabricStress(el, x, cps_[r], s0_[r], body_.sections[r].tension_only);
+  return fabricStress(el, x, cps_[r], s0_[r], body_.sections[r].wrinklingLaw());
 }
 
 void LargeDeflection::initHistory() {
@@ -210,10 +213,11 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
   // Threads only pay off on large meshes (on small ones their start-up dominates).
 #pragma omp parallel if (ne > kParallelElements)
   {
-    // fabric_element.hpp written out for the common (not tension-only)
-    // element, from the packed data: F = sum x_a dN_a^T, E = (F^T F - I)/2,
-    // S = C_ps E + S0, f_a = h A0 F S dN_a. Tension-only regions take the
-    // general path (their stress needs the principal decomposition).
+    // fabric_element.hpp written out for the elastic element, from the
+    // packed data: F = sum x_a dN_a^T, E = (F^T F - I)/2, S = C_ps E + S0,
+    // f_a = h A0 F S dN_a; with the relaxed wrinkling law, S is relaxed when
+    // it is not taut (relaxed_wrinkling.hpp). Projection and nonlinear-law
+    // regions take the general path.
     const double* x0 = x0_.data();
     const double* up = u.data();
     auto force = [&](int e, double* out) {
@@ -245,7 +249,9 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
       const double c11 = F1[0] * F1[0] + F1[1] * F1[1] + F1[2] * F1[2];
       const double c01 = F0[0] * F1[0] + F0[1] * F1[1] + F0[2] * F1[2];
       const Eigen::Vector3d E(0.5 * (c00 - 1), 0.5 * (c11 - 1), c01);
-      const Eigen::Vector3d S = cps_[p.region] * E + s0_[p.region];
+      Eigen::Vector3d S = cps_[p.region] * E + s0_[p.region];
+      if (relaxed_[static_cast<size_t>(p.region)] && !positiveSemidefinite2(S[0], S[1], S[2]))
+        S = relaxedStress(S, E + cps_inv_[p.region] * s0_[p.region], cps_[p.region]).S;
       double P0[3], P1[3]; // h A0 F S, columns
       for (int c = 0; c < 3; ++c) {
         P0[c] = p.hA * (F0[c] * S[0] + F1[c] * S[2]);

@@ -2,7 +2,8 @@
 /// @file large_deflection.hpp
 /// @brief The geometrically exact fabric membrane: total-Lagrangian CST
 /// triangles anywhere in 3D (fabric_element.hpp), plane-stress stiffness per
-/// region, pre-stress, tension-only wrinkling, failure thresholds, lumped
+/// region, pre-stress, tension-only wrinkling (relaxed_wrinkling.hpp, or the
+/// projection of fabric_element.hpp), failure thresholds, lumped
 /// mass (rho h A / 3 per node plus point masses). The internal force is
 /// computed element by element (no global stiffness) in one parallel region
 /// with static shares: each element writes its 3 corner forces to their
@@ -11,14 +12,15 @@
 /// section), so that a node's sum is the same at any thread count.
 ///
 /// A section with a linear law has S = C_ps E + S0 (Saint Venant-Kirchhoff,
-/// the fast path). A section with a nonlinear law (GVBO, a reduced-order
+/// the fast path), relaxed where it is not taut when the section is
+/// tension-only with the relaxed law. A section with a nonlinear law (GVBO, a reduced-order
 /// cell) keeps a history block per element (law_point.hpp: the law's state,
 /// its strain, the thickness stretch, the stored and dissipated energy),
 /// owned here: committed and trial copies, the trial one written by
 /// internalForce() and accepted by commitStep() (structure.hpp).
 
-#include "membrane/model/fabric_element.hpp"
 #include "membrane/model/body.hpp"
+#include "membrane/model/fabric_element.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <vector>
@@ -36,10 +38,12 @@ public:
   void internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const override;
   /// @return sum of h A0 (E.C_ps E / 2 + S0.E); in a tension-only region the
   /// stored energy h A0 (S.C_ps^-1 S - S0.C_ps^-1 S0) / 2 of fabricStoredEnergy()
-  /// (a state function, but not a potential of the tension-only force)
+  /// (the relaxed energy, the potential of the relaxed law's force; a state
+  /// function but not a potential of the projection's force)
   double strainEnergy(const Eigen::VectorXd& u) const override;
-  bool hasPotential() const override { return !any_tension_only_ && !hasHistory(); }
-  bool nonConservativeWrinkling() const override { return any_linear_tension_only_; }
+  bool hasPotential() const override { return !any_projection_ && !hasHistory(); }
+  /// @return whether a section with a linear law wrinkles by the projection
+  bool nonConservativeWrinkling() const override { return any_projection_; }
   /// The stable step at rest: a nonlinear law's instantaneous stiffness at J = 1
   double stableStep() const override;
   /// The stable step at the committed history: a nonlinear region's
@@ -98,14 +102,15 @@ private:
   /// memory (72 bytes instead of the 160 of FabricElement plus the section).
   struct Packed {
     int node[3];   ///< node indices
-    int region;    ///< region, or -1 - region for a tension-only one (general path)
+    int region;    ///< region, or -1 - region for a projection or nonlinear one (general path)
     double dN[6];  ///< dN_a in the element frame: x0, y0, x1, y1, x2, y2 (1/m)
     double hA = 0; ///< thickness x reference area (m^3)
   };
   std::vector<Packed> packed_;
   std::vector<double> x0_; // reference positions, 3 per node (m)
   SparseMatrix M_;
-  bool any_tension_only_ = false, any_linear_tension_only_ = false, any_threshold_ = false;
+  bool any_projection_ = false, any_threshold_ = false;
+  std::vector<char> relaxed_; // per region: a linear law with the relaxed wrinkling law
   /// Per element: offset of its history block in history_, -1 with a linear
   /// law; empty when no section has a nonlinear law.
   std::vector<long> history_offset_;

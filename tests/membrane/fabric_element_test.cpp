@@ -92,7 +92,7 @@ TEST(FabricElement, SingleElementStressIsCpsTimesGreenLagrangeStrain) {
     const Eigen::Matrix2d G = 0.5 * (U.transpose() * U - Eigen::Matrix2d::Identity());
     const Eigen::Vector3d E(G(0, 0), G(1, 1), 2 * G(0, 1));
     const FabricStress st =
-        fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), false);
+        fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), WrinklingLaw::None);
     EXPECT_LT((st.E - E).norm(), 1e-12 * E.norm());
     EXPECT_LT((st.S - cps * E).norm(), 1e-12 * (cps * E).norm());
   }
@@ -110,7 +110,7 @@ TEST(FabricElement, RigidRotationLeavesStressUnchangedAndGivesNoForce) {
   Eigen::Matrix2d U;
   U << 1.15, 0.1, 0.0, 0.95;
   const auto x = stretched(m, el, U);
-  const FabricStress st = fabricStress(el, x, cps, Eigen::Vector3d::Zero(), false);
+  const FabricStress st = fabricStress(el, x, cps, Eigen::Vector3d::Zero(), WrinklingLaw::None);
   const Eigen::Matrix3d f = fabricForces(el, st, h);
   const Eigen::Matrix3d R =
       Eigen::AngleAxisd(2.1, Eigen::Vector3d(0.3, -0.8, 0.5).normalized()).toRotationMatrix();
@@ -120,18 +120,18 @@ TEST(FabricElement, RigidRotationLeavesStressUnchangedAndGivesNoForce) {
     xr[a] = R * x[a] + c;
     rigid[a] = R * m.point(el.nodes[a]) + c;
   }
-  const FabricStress sr = fabricStress(el, xr, cps, Eigen::Vector3d::Zero(), false);
+  const FabricStress sr = fabricStress(el, xr, cps, Eigen::Vector3d::Zero(), WrinklingLaw::None);
   EXPECT_NEAR(sr.S[0] + sr.S[1], st.S[0] + st.S[1], 1e-10 * kE);
   EXPECT_NEAR(sr.S[0] * sr.S[1] - sr.S[2] * sr.S[2], st.S[0] * st.S[1] - st.S[2] * st.S[2],
               1e-10 * kE * kE);
   EXPECT_LT((fabricForces(el, sr, h) - R * f).norm(), 1e-10 * scale);
-  const FabricStress s0 = fabricStress(el, rigid, cps, Eigen::Vector3d::Zero(), false);
+  const FabricStress s0 = fabricStress(el, rigid, cps, Eigen::Vector3d::Zero(), WrinklingLaw::None);
   EXPECT_LT(fabricForces(el, s0, h).norm(), 1e-10 * scale);
   EXPECT_GT(f.norm(), 1e-3 * scale); // the stretched one does carry force
 }
 
-// Tension only, by hand: E = [0.05, -0.05, 0] gives S11 = c (0.05 - 0.3 x
-// 0.05) > 0 and S22 = c (-0.05 + 0.3 x 0.05) < 0: wrinkled, S = [S11, 0, 0];
+// The projection wrinkling law (wrinkling = "projection"), by hand: E = [0.05, -0.05, 0] gives S11
+// = c (0.05 - 0.3 x 0.05) > 0 and S22 = c (-0.05 + 0.3 x 0.05) < 0: wrinkled, S = [S11, 0, 0];
 // biaxial compression gives no stress (slack); a sheared state keeps only its
 // tensile principal part (principal values >= 0, the major one unchanged).
 TEST(FabricElement, TensionOnlyCarriesNoCompression) {
@@ -141,22 +141,25 @@ TEST(FabricElement, TensionOnlyCarriesNoCompression) {
   const double c = kE / (1 - kNu * kNu);
   Eigen::Matrix2d U;
   U << std::sqrt(1.1), 0, 0, std::sqrt(0.9); // E11 = 0.05, E22 = -0.05
-  FabricStress st = fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), true);
+  FabricStress st =
+      fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), WrinklingLaw::Projection);
   EXPECT_EQ(st.state, Wrinkle::Wrinkled);
   EXPECT_NEAR(st.S[0], c * (0.05 - kNu * 0.05), 1e-9 * c);
   EXPECT_NEAR(st.S[1], 0.0, 1e-9 * c);
   EXPECT_NEAR(st.S[2], 0.0, 1e-9 * c);
 
   U << 0.9, 0, 0, 0.95;
-  st = fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), true);
+  st =
+      fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), WrinklingLaw::Projection);
   EXPECT_EQ(st.state, Wrinkle::Slack);
   EXPECT_EQ(st.S.norm(), 0.0);
   EXPECT_EQ(fabricForces(el, st, 1e-3).norm(), 0.0);
 
   U << 1.05, 0.3, 0, 0.8;
   const FabricStress full =
-      fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), false);
-  st = fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), true);
+      fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), WrinklingLaw::None);
+  st =
+      fabricStress(el, stretched(m, el, U), cps, Eigen::Vector3d::Zero(), WrinklingLaw::Projection);
   const Eigen::Vector2d pf = principal2(full.S[0], full.S[1], full.S[2]);
   const Eigen::Vector2d pt = principal2(st.S[0], st.S[1], st.S[2]);
   ASSERT_LT(pf[1], 0.0);
@@ -220,7 +223,7 @@ TEST(FabricElement, MaterialAxisIsTheProjectedReferenceVector) {
     const Eigen::Vector3d X = m.point(el.nodes[a]);
     x[a] = X + 0.1 * d.dot(X - m.point(el.nodes[0])) * d;
   }
-  const FabricStress st = fabricStress(el, x, cps, Eigen::Vector3d::Zero(), false);
+  const FabricStress st = fabricStress(el, x, cps, Eigen::Vector3d::Zero(), WrinklingLaw::None);
   const double E11 = 0.5 * (1.1 * 1.1 - 1);
   EXPECT_NEAR(st.E[0], E11, 1e-12);
   EXPECT_NEAR(st.E[1], 0.0, 1e-12);

@@ -118,3 +118,29 @@ TEST(FabricMalformed, BadFabricValuesAreNamed) {
               "section[0].material_axis", "non-zero");
   expectNames(errorOf(base + time + "safety = 1.5\n"), "time.safety", "(0, 1]");
 }
+
+// The section key `wrinkling` (the law of a tension-only section): an unknown
+// name lists the valid ones; it needs model = "large_deflection" (like
+// tension_only), tension_only = true, and "projection" needs an elastic law.
+TEST(FabricMalformed, BadWrinklingKeyIsNamed) {
+  const std::string lin = test::isotropicSquare(4);
+  const std::string tail = "[time]\nt_end = 1.0e-4\n" + kFixed;
+  const auto unknown = errorOf("model = \"large_deflection\"\n" + lin +
+                               "tension_only = true\nwrinkling = \"relax\"\n" + tail);
+  expectNames(unknown, "wrinkling", "relax");
+  EXPECT_NE(unknown.find("\"relaxed\" or \"projection\""), std::string::npos) << unknown;
+  expectNames(errorOf(lin + "wrinkling = \"relaxed\"\n" + tail), "wrinkling", "large_deflection");
+  expectNames(
+      errorOf("model = \"large_deflection\"\n" + lin + "wrinkling = \"projection\"\n" + tail),
+      "wrinkling", "tension_only = true");
+  expectNames(errorOf(test::sectionSheet(test::gvboTable5Keys() +
+                                         "tension_only = true\nwrinkling = \"projection\"\n"),
+                      true),
+              "wrinkling", "needs an elastic law");
+  // Both names build.
+  for (const char* name : {"relaxed", "projection"})
+    EXPECT_EQ(errorOf("model = \"large_deflection\"\n" + lin +
+                          "tension_only = true\nwrinkling = \"" + name + "\"\n" + tail,
+                      true),
+              "");
+}

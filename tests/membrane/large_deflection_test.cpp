@@ -299,13 +299,17 @@ t_end = 0.03
 // forces, prefetched) against the element-by-element sum of fabricForces() at
 // a random 3D configuration: 5000 triangles (the parallel path), taut and
 // wrinkled elements (a compressive pre-stress), and tension-only sections
-// (the general path). Tolerance 1e-12 of the largest force: the two compute
-// h A0 F S dN in different association orders (round-off only).
+// (the relaxed law in the packed path, the projection in the general path). Tolerance 1e-12 of the
+// largest force: the two compute h A0 F S dN in different association orders (round-off only).
 TEST(LargeDeflection, InternalForceIsTheSumOfTheElementForces) {
-  for (const bool tension_only : {false, true}) {
+  for (const WrinklingLaw law :
+       {WrinklingLaw::None, WrinklingLaw::Relaxed, WrinklingLaw::Projection}) {
+    const std::string keys = law == WrinklingLaw::None
+                                 ? "tension_only = false"
+                                 : "tension_only = true\nwrinkling = \"" +
+                                       std::string(kWrinklingLawNames.name(law)) + "\"";
     const Model model = test::modelFromText(
-        fabricSquare(50, std::string("tension_only = ") + (tension_only ? "true" : "false") +
-                             "\nprestress = [20.0, -10.0, 5.0]\n[time]\nt_end = 1.0\n"));
+        fabricSquare(50, keys + "\nprestress = [20.0, -10.0, 5.0]\n[time]\nt_end = 1.0\n"));
     ASSERT_EQ(model.mesh.numElements(), 5000);
     const LargeDeflection ld(model);
     Eigen::VectorXd u = 0.01 * Eigen::VectorXd::Random(ld.numDofs());
@@ -319,14 +323,13 @@ TEST(LargeDeflection, InternalForceIsTheSumOfTheElementForces) {
       std::array<Eigen::Vector3d, 3> x;
       for (int a = 0; a < 3; ++a)
         x[a] = model.mesh.point(el.nodes[a]) + u.segment<3>(3 * el.nodes[a]);
-      const FabricStress st = fabricStress(el, x, C, s.prestress / s.thickness, tension_only);
+      const FabricStress st = fabricStress(el, x, C, s.prestress / s.thickness, law);
       const Eigen::Matrix3d fa = fabricForces(el, st, s.thickness);
       for (int a = 0; a < 3; ++a)
         ref.segment<3>(3 * el.nodes[a]) += fa.col(a);
     }
     ASSERT_EQ(f.size(), ref.size());
-    EXPECT_LE((f - ref).lpNorm<Eigen::Infinity>(), 1e-12 * ref.lpNorm<Eigen::Infinity>())
-        << "tension_only = " << tension_only;
+    EXPECT_LE((f - ref).lpNorm<Eigen::Infinity>(), 1e-12 * ref.lpNorm<Eigen::Infinity>()) << keys;
     EXPECT_GT(ref.lpNorm<Eigen::Infinity>(), 0.0);
   }
 }
