@@ -247,6 +247,11 @@ void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
       r.fail("prestress", "needs an elastic law: " + s.material + " starts unstressed");
   }
   s.tension_only = r.getBool("tension_only", false);
+  if (s.tension_only && s.law && s.law->kind() == materials::LawKind::Fabric)
+    r.fail("tension_only",
+           "the fabric law already carries no compression along its yarns, and wrinkling on top "
+           "of it is not supported (a slack element's yarns have no stiffness to solve the "
+           "wrinkles with): leave tension_only out");
   s.failure_strain = r.getDouble("failure_strain", s.failure_strain);
   s.failure_stress = r.getDouble("failure_stress", s.failure_stress);
   if (!(s.failure_strain > 0))
