@@ -15,7 +15,7 @@
 namespace lamina::materials {
 
 LawPtr CatalogEntry::makeLaw() const {
-  return LawSpec{law, C, gvbo}.make();
+  return LawSpec{law, C, gvbo, fabric}.make();
 }
 
 Material CatalogEntry::toMaterial() const {
@@ -56,6 +56,7 @@ Catalog::Catalog(const std::filesystem::path& path) : path_(path) {
     e.law = law.kind;
     e.C = law.C;
     e.gvbo = law.gvbo;
+    e.fabric = law.fabric;
     entries_.emplace(name, std::move(e));
   }
   root.finish();

@@ -7,8 +7,11 @@
 /// `law = "transversely-isotropic"` with `E1, E2, G12, nu12, nu23` (axis x);
 /// `law = "anisotropic"` with `C` (6x6, Pa, lamina order); or `law = "gvbo"`
 /// with `E`, `nu` (= E0, nu0) and a `[NAME.gvbo]` table of the other
-/// parameters in SI units. Optional `nominal_thickness` (m).
+/// parameters in SI units; or `law = "fabric"` with E_warp (or warp_curve),
+/// E_fill (or fill_curve), G12 (fabric_law.hpp; a curve file is relative to
+/// the catalog). Optional `nominal_thickness` (m).
 
+#include "materials/fabric_law.hpp"
 #include "materials/gvbo.hpp"
 #include "materials/law.hpp"
 #include "materials/material.hpp"
@@ -30,6 +33,7 @@ struct CatalogEntry {
   double density = 0;                      ///< kg/m^3
   Stiffness C;                             ///< elastic stiffness (for gvbo: at J = 1, i.e. E0, nu0)
   std::optional<GvboParameters> gvbo;      ///< GVBO parameters for law = "gvbo"
+  std::optional<FabricParameters> fabric;  ///< yarn curves and G12 for law = "fabric"
   std::optional<double> nominal_thickness; ///< m, where the source gives one
   /// @return the law object of this entry (LawSpec::make)
   LawPtr makeLaw() const;

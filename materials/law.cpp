@@ -31,8 +31,8 @@ Vector6 ConstitutiveLaw::elasticStrain(const Vector6& sigma, double J) const {
 }
 
 LinearElasticLaw::LinearElasticLaw(LawKind kind, const Stiffness& C) : kind_(kind), C_(C) {
-  LAMINA_CHECK(kind != LawKind::Gvbo && kind != LawKind::ReducedOrder, "the ", toString(kind),
-               " law is not linear elasticity");
+  LAMINA_CHECK(kind != LawKind::Gvbo && kind != LawKind::ReducedOrder && kind != LawKind::Fabric,
+               "the ", toString(kind), " law is not linear elasticity");
 }
 
 void LinearElasticLaw::update(const PointStep& step, const double*, double*, Vector6& sigma,

@@ -31,6 +31,9 @@ enum class LawKind {
   TransverselyIsotropic, ///< "transversely-isotropic": E1, E2, G12, nu12, nu23 (axis x)
   Anisotropic,           ///< "anisotropic": C, 6x6, lamina order, Pa
   Gvbo,                  ///< "gvbo": the polyurea chapter's rate-dependent law
+  /// "fabric": warp and fill yarns without compression and an in-plane shear
+  /// modulus (fabric_law.hpp): E_warp or warp_curve, E_fill or fill_curve, G12
+  Fabric,
   /// "reduced-order": a reduced-order cell (reduced_order_law.hpp). Not a law
   /// with keys: it is a library entry made by `homogenize --reduced-order`
   /// and referred to by its name; readLawSpec refuses it.
@@ -48,13 +51,14 @@ inline constexpr auto kLawKindNames =
                               {"transversely-isotropic", LawKind::TransverselyIsotropic},
                               {"anisotropic", LawKind::Anisotropic},
                               {"gvbo", LawKind::Gvbo},
+                              {"fabric", LawKind::Fabric},
                               {"reduced-order", LawKind::ReducedOrder},
                               {"void", LawKind::Void}});
 
 /// @return the file spelling of @p k ("isotropic", ...)
 const char* toString(LawKind k);
 /// @return the laws a file may give with keys, for messages:
-/// "'isotropic', 'transversely-isotropic', 'anisotropic' or 'gvbo'" (not
+/// "'isotropic', 'transversely-isotropic', 'anisotropic', 'gvbo' or 'fabric'" (not
 /// "reduced-order", which is referred to by an entry's name, nor "void", a
 /// cell's pore without keys)
 std::string lawKindNames();
@@ -79,6 +83,12 @@ public:
   virtual LawKind kind() const = 0;
   /// @return true when sigma = C eps with no state and no rate dependence
   virtual bool isLinear() const = 0;
+  /// @return true when the law stores all the work of its stress: the
+  /// Kirchhoff stress J sigma is the gradient of a stored energy of the
+  /// strain, J storedEnergy() per reference volume, so no strain path
+  /// dissipates (the fabric law). Callers then book no inelastic strain and
+  /// no dissipation. Default: false.
+  virtual bool isHyperelastic() const { return false; }
   /// @return doubles of internal state per point (0 for linear laws)
   virtual int stateSize() const = 0;
   /// Writes the initial (unstressed, virgin) state into @p state.

@@ -34,7 +34,8 @@ constexpr const char* kVoidIsAPore =
 
 /// A void law has no elastic constants: the first one @p t gives is an error.
 void checkNoConstants(const core::TableReader& t) {
-  for (const char* key : {"E", "nu", "C", "E1", "E2", "G12", "nu12", "nu23", "gvbo"})
+  for (const char* key : {"E", "nu", "C", "E1", "E2", "G12", "nu12", "nu23", "gvbo", "E_warp",
+                          "E_fill", "warp_curve", "fill_curve"})
     if (t.has(key))
       t.fail(key, "a void phase (a pore) has zero stiffness: no elastic constants");
 }
@@ -74,6 +75,10 @@ LawSpec readLawConstants(const core::TableReader& t, LawKind kind) {
   case LawKind::Anisotropic:
     s.C = Stiffness(readMatrix6(t, "C"));
     break;
+  case LawKind::Fabric:
+    s.fabric = readFabricParameters(t);
+    s.C = FabricLaw(*s.fabric).elasticStiffness(1.0);
+    return s; // diagonal and positive by construction
   case LawKind::ReducedOrder:
     t.fail("law", kReducedOrderIsAnEntry);
   case LawKind::Void:
@@ -93,6 +98,10 @@ LawPtr LawSpec::make() const {
     LAMINA_CHECK(gvbo.has_value(), "gvbo law without its parameters");
     return std::make_shared<GvboLaw>(*gvbo);
   }
+  if (kind == LawKind::Fabric) {
+    LAMINA_CHECK(fabric.has_value(), "fabric law without its parameters");
+    return std::make_shared<FabricLaw>(*fabric);
+  }
   LAMINA_CHECK(kind != LawKind::ReducedOrder, kReducedOrderIsAnEntry);
   return std::make_shared<LinearElasticLaw>(kind, C); // void: C = 0
 }
@@ -100,6 +109,7 @@ LawPtr LawSpec::make() const {
 void writeLawSpec(std::ostream& os, const LawSpec& law) {
   LAMINA_CHECK(law.kind != LawKind::ReducedOrder, kReducedOrderIsAnEntry);
   LAMINA_CHECK(law.kind != LawKind::Void, kVoidIsAPore);
+  LAMINA_CHECK(law.kind != LawKind::Fabric, "a fabric law is not written as a law spec");
   if (law.kind != LawKind::Gvbo) {
     os << "law = \"" << toString(LawKind::Anisotropic) << "\"\n";
     writeMatrix6(os, "C", law.C.matrix());

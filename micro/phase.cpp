@@ -48,6 +48,10 @@ Phase readPhase(const core::TableReader& t, const CatalogProvider& catalog) {
     ph.C = law.C;
     ph.gvbo = law.gvbo;
   }
+  if (ph.law == materials::LawKind::Fabric) // a membrane law: no thickness response of its own
+    t.fail(t.has("catalog") ? "catalog" : "law",
+           "the fabric law is a membrane law (yarns in the plane, no compression): a cell phase "
+           "needs a 3D solid law");
   ph.model = ph.lawSpec().make();
   if (ph.isVoid()) { // a pore: no mass
     if (t.has("density"))

@@ -51,7 +51,7 @@ struct Phase {
   materials::Stiffness stiffnessAt(double J) const;
   /// @return the law as its file gave it (kind, C, GVBO parameters): the
   /// spec model was made from
-  materials::LawSpec lawSpec() const { return {law, C, gvbo}; }
+  materials::LawSpec lawSpec() const { return {law, C, gvbo, std::nullopt}; }
   /// @return whether the phase is a pore (law "void": C = 0, density 0)
   bool isVoid() const { return law == materials::LawKind::Void; }
   /// @return whether every rotation leaves the phase's stiffness as it is:

@@ -248,6 +248,11 @@ void readFabricKeys(const core::TableReader& r, ModelKind kind, Section& s) {
       r.fail("prestress", "needs an elastic law: " + s.material + " starts unstressed");
   }
   s.tension_only = r.getBool("tension_only", false);
+  if (s.tension_only && s.law && s.law->kind() == materials::LawKind::Fabric)
+    r.fail("tension_only",
+           "the fabric law already carries no compression along its yarns, and wrinkling on top "
+           "of it is not supported (a slack element's yarns have no stiffness to solve the "
+           "wrinkles with): leave tension_only out");
   s.wrinkling = r.getChoice("wrinkling", kWrinklingLawNames, WrinklingLaw::Relaxed);
   if (r.has("wrinkling") && !s.tension_only)
     r.fail("wrinkling", "chooses the law of a tension-only section: it needs tension_only = true");

@@ -156,7 +156,12 @@ Eigen::Vector3d stepLawPoint(const materials::ConstitutiveLaw& law, const Matrix
     sigma_n[kPlane[i]] = block_n[P::kSigma + i];
   const double work = 0.5 * (J_n * sigma_n + J * w.r.sigma).dot(deps);
   const double psi = J * law.storedEnergy(w.r.sigma, block + P::kLaw, J);
-  const double inelastic = equivalentDeviatoric(deps - law.elasticStrain(w.r.sigma - sigma_n, J));
+  // A hyperelastic law stores all its work (law.hpp): no inelastic strain, no
+  // dissipation (the trapezoidal work differs from psi - psi_n only by the
+  // rule's error, e.g. across a fabric yarn's cut-off).
+  const bool elastic = law.isHyperelastic();
+  const double inelastic =
+      elastic ? 0.0 : equivalentDeviatoric(deps - law.elasticStrain(w.r.sigma - sigma_n, J));
   // The new history.
   Eigen::Map<Matrix32>(block + P::kF) = F;
   Eigen::Map<Vector6>(block + P::kEps) = w.r.eps;
@@ -166,7 +171,8 @@ Eigen::Vector3d stepLawPoint(const materials::ConstitutiveLaw& law, const Matrix
     block[P::kSigma + i] = w.r.sigma[kPlane[i]];
   block[P::kJ] = J;
   block[P::kPsi] = psi;
-  block[P::kDissipation] = block_n[P::kDissipation] + work - (psi - block_n[P::kPsi]);
+  block[P::kDissipation] =
+      block_n[P::kDissipation] + (elastic ? 0.0 : work - (psi - block_n[P::kPsi]));
   block[P::kInelastic] = block_n[P::kInelastic] + inelastic;
   block[P::kInelasticRate] = dt > 0 ? inelastic / dt : 0.0;
   block[P::kWrinkleState] = static_cast<double>(static_cast<int>(w.state));

@@ -43,6 +43,9 @@
 /// the inelastic dissipation D += dw - (psi - psi_n). The equivalent
 /// inelastic strain accumulates sqrt(2/3 e:e) of the deviator e of
 /// d eps - C(J)^-1 (sigma - sigma_n) (C the law's instantaneous stiffness).
+/// A hyperelastic law (law.isHyperelastic(), the fabric law) stores all its
+/// work: D and the inelastic strain stay zero (the trapezoidal work would
+/// differ from psi - psi_n by the rule's error only).
 
 #include "materials/law.hpp"
 

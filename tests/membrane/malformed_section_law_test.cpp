@@ -94,7 +94,7 @@ TEST(MalformedSectionLaw, UnknownLawListsTheLaws) {
   expectHas(errorOf(test::sectionSheet(
                 replaced(test::gvboTable5Keys(), "law = \"gvbo\"", "law = \"gbvo\""))),
             {"law.toml", "section[0].law", "'gbvo'",
-             "'isotropic', 'transversely-isotropic', 'anisotropic' or 'gvbo'"});
+             "'isotropic', 'transversely-isotropic', 'anisotropic', 'gvbo' or 'fabric'"});
   // a reduced-order cell is a library entry, given by its name
   expectHas(errorOf(test::sectionSheet("law = \"reduced-order\"\ndensity = 1e3\n")),
             {"law.toml", "section[0].law", "library entry"});

@@ -109,6 +109,17 @@ TEST(MalformedCell, CompositeVoxelsMustBeABoolean) {
                 "expected true or false");
 }
 
+// The fabric law is a membrane law: a cell phase refuses it, inline or
+// from the catalog.
+TEST(MalformedCell, FabricLawIsNotACellPhase) {
+  expectError("[cell]\nresolution = 8\n[[phases]]\nname = \"m\"\nlaw = \"fabric\"\nE_warp = "
+              "6e8\nE_fill = 5e8\nG12 = 3e7\ndensity = 1283\n",
+              "phases[0].law", "membrane law");
+  expectError("[cell]\nresolution = 8\n[[phases]]\nname = \"m\"\ncatalog = "
+              "\"vinyl-coated-polyester\"\n",
+              "phases[0].catalog", "membrane law");
+}
+
 TEST(MalformedCell, MissingCatalogEntry) {
   expectError("[cell]\nresolution = 8\n[[phases]]\nname = \"m\"\ncatalog = \"unobtainium\"\n",
               "catalog", "unobtainium");
