@@ -280,6 +280,7 @@ private:
     h["run/maxima"] = (Eigen::VectorXd(6) << max_abs_w_, max_speed_, max_balance_, energy_scale_,
                        max_disp_, peak_total_reaction_)
                           .finished();
+    h["run/peak_support_reaction"] = Eigen::VectorXd::Constant(1, peak_support_reaction_);
     h["run/peak_reaction"] = Eigen::Map<const Eigen::VectorXd>(
         peak_reaction_.data(), static_cast<Eigen::Index>(peak_reaction_.size()));
     h["run/probe_peak"] = Eigen::Map<const Eigen::VectorXd>(
@@ -342,6 +343,8 @@ private:
       energy_scale_ = m[3];
       max_disp_ = m[4];
       peak_total_reaction_ = m[5];
+      if (h.count("run/peak_support_reaction")) // absent from checkpoints before it was kept
+        peak_support_reaction_ = historyEntry(h, "run/peak_support_reaction", 1)[0];
       const auto nr = static_cast<Eigen::Index>(sim.reactionNames().size());
       const Eigen::VectorXd& pr = historyEntry(h, "run/peak_reaction", nr);
       peak_reaction_.assign(pr.data(), pr.data() + nr);
@@ -396,6 +399,27 @@ private:
 
   std::string digest() const { return opt_.case_digest.empty() ? model_.name : opt_.case_digest; }
 
+  /// A row of reactions.csv at the current state and the running peaks of
+  /// each set, of their sum and of the supports' sum (without the rigid surfaces).
+  void recordReactions(const Simulation& sim) {
+    const auto sums = sim.reactionSums();
+    std::vector<double> r{sim.time()};
+    Eigen::Vector3d total = Eigen::Vector3d::Zero(), supports = Eigen::Vector3d::Zero();
+    // the rigid surfaces come last (Simulation::reactionSums)
+    const size_t n_supports = sums.size() - std::min(sums.size(), model_.contact.size());
+    for (size_t k = 0; k < sums.size(); ++k) {
+      for (int c = 0; c < 3; ++c)
+        r.push_back(sums[k][c]);
+      peak_reaction_[k] = std::max(peak_reaction_[k], sums[k].norm());
+      total += sums[k];
+      if (k < n_supports)
+        supports += sums[k];
+    }
+    peak_total_reaction_ = std::max(peak_total_reaction_, total.norm());
+    peak_support_reaction_ = std::max(peak_support_reaction_, supports.norm());
+    reactions_->row(r);
+  }
+
   void record(const Simulation& sim, bool fields, bool energy) {
     const auto& u = sim.u();
     const auto& v = sim.v();
@@ -415,19 +439,8 @@ private:
       probe_peak_[k] = std::max(probe_peak_[k], std::abs(u[3 * i + 2]));
     }
     probes_->row(row);
-    if (reactions_) {
-      const auto sums = sim.reactionSums();
-      std::vector<double> r{sim.time()};
-      Eigen::Vector3d total = Eigen::Vector3d::Zero();
-      for (size_t k = 0; k < sums.size(); ++k) {
-        for (int c = 0; c < 3; ++c)
-          r.push_back(sums[k][c]);
-        peak_reaction_[k] = std::max(peak_reaction_[k], sums[k].norm());
-        total += sums[k];
-      }
-      peak_total_reaction_ = std::max(peak_total_reaction_, total.norm());
-      reactions_->row(r);
-    }
+    if (reactions_)
+      recordReactions(sim);
     if (energy) {
       last_energy_ = sim.energy();
       if (!std::isfinite(last_energy_.kinetic + last_energy_.strain + last_energy_.reaction_work)) {
@@ -532,6 +545,7 @@ private:
                         {"final", {sums[k][0], sums[k][1], sums[k][2]}}};
     s["reactions"] = reac;
     s["peak_reaction_total"] = peak_total_reaction_;
+    s["peak_reaction_supports"] = peak_support_reaction_;
     s["max_displacement"] = max_disp_;
     s["model"] = std::string(kModelKindNames.name(model_.kind));
     s["integrator"] = {{"name", sim.integrator().name()}, {"stable_dt", sim.stableStep()}};
@@ -607,6 +621,7 @@ private:
   Energy last_energy_;
   double max_abs_w_ = 0, max_speed_ = 0, max_balance_ = 0, energy_scale_ = 0;
   double max_disp_ = 0, peak_total_reaction_ = 0;
+  double peak_support_reaction_ = 0; ///< peak |sum| of the constraints' and springs' reactions
   double wall_s_ = 0, step_s_ = 0;
 };
 
@@ -741,6 +756,7 @@ private:
                           {"max_speed", s["max_speed"]},
                           {"peak_reaction", reaction},
                           {"peak_total_reaction", s["peak_reaction_total"]},
+                          {"peak_support_reaction", s["peak_reaction_supports"]},
                           {"reactions", s["reactions"]}};
   }
 

@@ -14,9 +14,9 @@
 // Assumption (the text does not give Fig. 11's spacing): six curved beams,
 // equally spaced 11.10 / 5 = 2.22 m apart, two of them at the gable ends; the
 // springs are at their 12 ends. The beams appear as interior curves of the
-// mesh ("beams") so the fabric has nodes on them; they carry no stiffness
-// here (the paper models them as rigid but the fabric is only supported at
-// the springs and the gables).
+// mesh ("beams") so the fabric has nodes on them; the case puts a rigid arc
+// under each inner beam line (blast-roof.toml's [[rigid_surface]] tables,
+// x = -3.33, -1.11, 1.11, 3.33 m), on which the fabric rests.
 //
 // Physical groups: surface "fabric"; curves "gables" (x = -5.55 and 5.55),
 // "eaves" (the two long edges), "beams" (the four interior beam lines);

@@ -24,6 +24,21 @@ nlohmann::json runText(const std::string& text, const std::string& out) {
   std::filesystem::remove_all(opt.out_dir);
   return summary;
 }
+
+/// The roof case (cases/membrane/blast-roof.toml) on a coarse mesh
+/// (lc = 1.5 m, written to @p geo_path) without field outputs.
+std::string coarseRoof(const std::filesystem::path& geo_path) {
+  std::ifstream in(test::sourcePath("cases/meshes/arched-roof.geo"));
+  std::stringstream geo;
+  geo << in.rdbuf();
+  std::ofstream(geo_path) << std::regex_replace(geo.str(), std::regex("lc = 0\\.5;"), "lc = 1.5;");
+  std::ifstream case_in(test::sourcePath("cases/membrane/blast-roof.toml"));
+  std::stringstream c;
+  c << case_in.rdbuf();
+  const std::string text = std::regex_replace(
+      c.str(), std::regex("\"\\.\\./meshes/arched-roof\\.geo\""), "\"" + geo_path.string() + "\"");
+  return std::regex_replace(text, std::regex("field_every = [0-9]+"), "fields = false");
+}
 } // namespace
 
 // A 1 m square of fabric, clamped on its edges, 2 m above a 50 g charge
@@ -47,27 +62,46 @@ fields = false
   EXPECT_LT(std::abs(s["energy"]["max_abs_balance"].get<double>()), 0.01 * W);
 }
 
-// The roof of the drag paper on a coarse mesh (lc = 1.5 m): with drag the
-// peak vertical displacement and the peak total reaction are lower.
+// The roof of the drag paper on a coarse mesh (lc = 1.5 m), resting on its
+// beams: with drag the peak vertical displacement and the supports' peak
+// reaction are lower (the direction of the paper's result); in both runs no
+// node goes deeper into a beam than the stated tolerance, the fabric came
+// back onto the beams (their contact forces did work) and the energy
+// balance, contact work included and with no wrinkling term, closes within
+// 1e-3 of the blast's work (central differences: O(dt^2) at safety 0.6,
+// measured 2e-4 on the full mesh).
 TEST(BlastRoof, DragLowersPeakDeflectionAndReaction) {
-  std::ifstream in(test::sourcePath("cases/meshes/arched-roof.geo"));
-  std::stringstream geo;
-  geo << in.rdbuf();
-  const std::string coarse = std::regex_replace(geo.str(), std::regex("lc = 0\\.5;"), "lc = 1.5;");
   const auto geo_path = test::tempPath("coarse-roof.geo");
-  std::ofstream(geo_path) << coarse;
-  std::ifstream case_in(test::sourcePath("cases/membrane/blast-roof.toml"));
-  std::stringstream c;
-  c << case_in.rdbuf();
-  std::string text = std::regex_replace(c.str(), std::regex("\"\\.\\./meshes/arched-roof\\.geo\""),
-                                        "\"" + geo_path.string() + "\"");
-  text = std::regex_replace(text, std::regex("field_every = [0-9]+"), "fields = false");
-  const auto s = runText(text, "blast-roof-coarse");
+  const auto s = runText(coarseRoof(geo_path), "blast-roof-coarse");
   std::filesystem::remove(geo_path);
   const auto& with = s["drag_comparison"]["with_drag"];
   const auto& without = s["drag_comparison"]["without_drag"];
   EXPECT_LT(with["max_abs_w"].get<double>(), without["max_abs_w"].get<double>());
-  EXPECT_LT(with["peak_total_reaction"].get<double>(),
-            without["peak_total_reaction"].get<double>());
+  EXPECT_LT(with["peak_support_reaction"].get<double>(),
+            without["peak_support_reaction"].get<double>());
   EXPECT_GT(with["max_abs_w"].get<double>(), 0.1); // the blast moved the roof
+}
+
+// One run of the coarse roof (without drag, the harder landing): the
+// penetration bound, the beams' work and the balance of the comment above.
+TEST(BlastRoof, FabricLandsOnTheBeamsWithinTheToleranceAndTheBalanceCloses) {
+  const auto geo_path = test::tempPath("coarse-roof-beams.geo");
+  std::string text = coarseRoof(geo_path);
+  text = std::regex_replace(text, std::regex("compare_without_drag = true"), "");
+  text = std::regex_replace(text, std::regex("\\[\\[drag\\]\\][^\\[]*"), "");
+  const auto s = runText(text, "blast-roof-beams");
+  std::filesystem::remove(geo_path);
+  ASSERT_EQ(s["contact"].size(), 4u); // the four inner beams
+  double landed = 0;
+  for (const auto& [name, surface] : s["contact"].items()) {
+    EXPECT_LE(surface["max_penetration"].get<double>(),
+              surface["penetration_tolerance"].get<double>())
+        << name;
+    landed = std::max(landed, surface["peak_force"].get<double>());
+  }
+  EXPECT_GT(landed, 1e3); // N: the fabric came down onto the beams
+  const auto& e = s["energy"];
+  EXPECT_FALSE(e.contains("wrinkling_dissipation"));
+  EXPECT_LT(e["contact_work"].get<double>(), 0.0); // the beams stopped the fabric
+  EXPECT_LT(e["max_abs_balance"].get<double>(), 1e-3 * e["external_work"].get<double>());
 }
