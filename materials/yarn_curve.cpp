@@ -1,5 +1,7 @@
 #include "materials/yarn_curve.hpp"
 
+#include "core/pair_table.hpp"
+
 #include "core/format.hpp"
 #include "core/input_file.hpp"
 
@@ -77,87 +79,46 @@ double YarnCurve::energy(double e) const {
   return energy_[i] + stress_[i] * d + 0.5 * slope_[i] * d * d;
 }
 
-namespace {
-
-/// One data row of a curve file.
-struct CurveRow {
-  double strain = 0, stress = 0;
-  int line = 0;
-};
-
-/// @return the rows of the CSV text @p text (header and comments skipped);
-/// errors name @p path, the line and @p key
-std::vector<CurveRow> parseRows(const std::string& text, const std::string& path,
-                                const std::string& key) {
-  std::istringstream in(text);
-  std::vector<CurveRow> rows;
-  std::string line;
-  int line_no = 0;
-  bool header_allowed = true;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (const auto hash = line.find('#'); hash != std::string::npos)
-      line.erase(hash);
-    if (line.find_first_not_of(" \t\r") == std::string::npos)
-      continue;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream row(line);
-    CurveRow r;
-    r.line = line_no;
-    std::string rest;
-    const bool numeric = static_cast<bool>(row >> r.strain >> r.stress) && !(row >> rest);
-    if (!numeric && header_allowed) { // a header such as "strain,stress"
-      header_allowed = false;
-      continue;
-    }
-    header_allowed = false;
-    if (!numeric)
-      throw Error("expected two numbers 'strain, stress' (strain, Pa)", {path, line_no, key});
-    if (!std::isfinite(r.strain) || !std::isfinite(r.stress))
-      throw Error("strain and stress must be finite", {path, line_no, key});
-    rows.push_back(r);
-  }
-  return rows;
-}
-
-} // namespace
-
 YarnCurve readYarnCurveCsv(const std::string& path, const std::string& key) {
   const std::string text =
       core::readWholeFile(path, core::kMaxTableBytes, "stress-strain curve", {path, 0, key});
-  const std::vector<CurveRow> rows = parseRows(text, path, key);
+  std::vector<core::PairRow> rows =
+      core::readPairRows(text, path, key, "'strain, stress' (strain, Pa)");
+  for (const core::PairRow& r : rows)
+    if (!std::isfinite(r.first) || !std::isfinite(r.second))
+      throw Error("strain and stress must be finite", {path, r.line, key});
   if (rows.size() < 2)
     throw Error("a stress-strain curve needs at least two (strain, stress) rows, found " +
                     std::to_string(rows.size()),
                 {path, rows.empty() ? 0 : rows[0].line, key});
   std::vector<double> strain, stress;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    const CurveRow& r = rows[i];
+    const core::PairRow& r = rows[i];
     const ErrorContext at{path, r.line, key};
-    if (i == 0 && r.strain < 0)
+    if (i == 0 && r.first < 0)
       throw Error("the first strain must be >= 0 (a yarn carries no compression)", at);
-    if (i == 0 && r.strain == 0 && r.stress != 0)
+    if (i == 0 && r.first == 0 && r.second != 0)
       throw Error("the stress at zero strain must be 0 (the yarn is unstressed at rest), not " +
-                      core::formatShort(r.stress),
+                      core::formatShort(r.second),
                   at);
-    if (i == 0 && r.strain > 0) { // the unstressed point (0, 0) in front
-      if (r.stress < 0)
+    if (i == 0 && r.first > 0) { // the unstressed point (0, 0) in front
+      if (r.second < 0)
         throw Error("stress must be >= 0 (the curve rises from (0, 0))", at);
       strain.push_back(0.0);
       stress.push_back(0.0);
     }
-    if (i > 0 && !(r.strain > rows[i - 1].strain))
-      throw Error("strain " + core::formatShort(r.strain) + " does not increase (line " +
+    if (i > 0 && !(r.first > rows[i - 1].first))
+      throw Error("strain " + core::formatShort(r.first) + " does not increase (line " +
                       std::to_string(rows[i - 1].line) + " has " +
-                      core::formatShort(rows[i - 1].strain) + ")",
+                      core::formatShort(rows[i - 1].first) + ")",
                   at);
-    if (i > 0 && !(r.stress >= rows[i - 1].stress))
-      throw Error("stress " + core::formatShort(r.stress) + " falls below line " +
+    if (i > 0 && !(r.second >= rows[i - 1].second))
+      throw Error("stress " + core::formatShort(r.second) + " falls below line " +
                       std::to_string(rows[i - 1].line) + "'s " +
-                      core::formatShort(rows[i - 1].stress) + " (the curve must be monotone)",
+                      core::formatShort(rows[i - 1].second) + " (the curve must be monotone)",
                   at);
-    strain.push_back(r.strain);
-    stress.push_back(r.stress);
+    strain.push_back(r.first);
+    stress.push_back(r.second);
   }
   return YarnCurve(std::move(strain), std::move(stress), {path, 0, key});
 }

@@ -1,5 +1,7 @@
 #include "membrane/loads/blast.hpp"
 
+#include "core/pair_table.hpp"
+
 #include "core/format.hpp"
 #include "core/input_file.hpp"
 
@@ -387,32 +389,11 @@ PressureTable::PressureTable(std::vector<double> times, std::vector<double> pres
 }
 
 PressureTable PressureTable::readCsv(const std::string& path) {
-  std::istringstream in(core::readWholeFile(path, core::kMaxTableBytes, "pressure table"));
+  const std::string text = core::readWholeFile(path, core::kMaxTableBytes, "pressure table");
   std::vector<double> t, p;
-  std::string line;
-  int line_no = 0;
-  bool first_data_line = true;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (const auto hash = line.find('#'); hash != std::string::npos)
-      line.erase(hash);
-    if (line.find_first_not_of(" \t\r") == std::string::npos)
-      continue;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream row(line);
-    double a = 0, b = 0;
-    std::string rest;
-    const bool numeric = static_cast<bool>(row >> a >> b) && !(row >> rest);
-    if (!numeric) {
-      if (first_data_line && t.empty()) { // a header such as "time,pressure"
-        first_data_line = false;
-        continue;
-      }
-      throw Error("expected two numbers 'time,pressure' (s, Pa)", {path, line_no, ""});
-    }
-    first_data_line = false;
-    t.push_back(a);
-    p.push_back(b);
+  for (const core::PairRow& r : core::readPairRows(text, path, "", "'time,pressure' (s, Pa)")) {
+    t.push_back(r.first);
+    p.push_back(r.second);
   }
   return PressureTable(std::move(t), std::move(p), {path, 0, ""});
 }
