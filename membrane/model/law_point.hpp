@@ -55,13 +55,13 @@ namespace lamina::membrane {
 
 /// Layout of an element's history block (doubles); the law's state follows at kLaw.
 struct LawPoint {
-  static constexpr int kF = 0;              ///< F at t_n, 3 x 2 column-major (6)
-  static constexpr int kEps = 6;            ///< the law's strain at t_n (6, lamina order)
-  static constexpr int kLambda3 = 12;       ///< thickness stretch h / h0
-  static constexpr int kWrinkle = 13;       ///< wrinkling strain [xx, yy, xy] (3)
-  static constexpr int kSigma = 16;         ///< in-plane Cauchy stress [xx, yy, xy], law frame (3, Pa)
-  static constexpr int kJ = 19;             ///< volume ratio J = J2 lambda3
-  static constexpr int kPsi = 20;           ///< stored energy per reference volume (J/m^3)
+  static constexpr int kF = 0;        ///< F at t_n, 3 x 2 column-major (6)
+  static constexpr int kEps = 6;      ///< the law's strain at t_n (6, lamina order)
+  static constexpr int kLambda3 = 12; ///< thickness stretch h / h0
+  static constexpr int kWrinkle = 13; ///< wrinkling strain [xx, yy, xy] (3)
+  static constexpr int kSigma = 16;   ///< in-plane Cauchy stress [xx, yy, xy], law frame (3, Pa)
+  static constexpr int kJ = 19;       ///< volume ratio J = J2 lambda3
+  static constexpr int kPsi = 20;     ///< stored energy per reference volume (J/m^3)
   static constexpr int kDissipation = 21;   ///< inelastic dissipation per reference volume (J/m^3)
   static constexpr int kInelastic = 22;     ///< equivalent inelastic strain
   static constexpr int kInelasticRate = 23; ///< its rate over the last step (1/s)
