@@ -4,8 +4,6 @@
 #include "core/format.hpp"
 #include "membrane/integrators/central_difference.hpp"
 #include "membrane/integrators/newmark.hpp"
-#include "membrane/model/large_deflection.hpp"
-#include "membrane/model/linear_membrane.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,45 +12,6 @@
 namespace lamina::membrane {
 
 namespace {
-/// @return the row sums of @p M (the lumped mass per DOF, kg)
-Eigen::VectorXd lumpedMass(const SparseMatrix& M) {
-  Eigen::VectorXd m = Eigen::VectorXd::Zero(M.rows());
-  for (int d = 0; d < M.rows(); ++d)
-    for (SparseMatrix::InnerIterator it(M, d); it; ++it)
-      m[d] += it.value();
-  return m;
-}
-
-std::unique_ptr<Structure> makeStructure(const Model& model) {
-  if (model.kind == ModelKind::LargeDeflection)
-    return std::make_unique<LargeDeflection>(model);
-  return std::make_unique<LinearMembrane>(model, model.time.lumped);
-}
-
-/// The stable step of @p structure with the model's springs and contact
-/// penalties: a spring k on a node of lumped mass m adds k / m to omega^2
-/// there, so the bound omega_max = 2 / dt_s of the structure becomes
-/// sqrt((2 / dt_s)^2 + k / m); the contact's bound (penaltyOmega2) adds to
-/// the springs' (a node with both: their sum, or less).
-double stableWithSprings(const Model& model, const Structure& structure, double dt) {
-  if (model.springs.empty() && model.contact.empty())
-    return dt;
-  const SparseMatrix& M = structure.mass();
-  auto lumped = [&M](int d) {
-    double m = 0;
-    for (SparseMatrix::InnerIterator it(M, d); it; ++it)
-      m += it.value();
-    return m;
-  };
-  double w2 = 0;
-  for (const auto& s : model.springs)
-    for (int d : s->dofs())
-      w2 = std::max(w2, s->stiffness() / lumped(d));
-  if (!model.contact.empty())
-    w2 += penaltyOmega2(model.contact, lumpedMass(M));
-  return 2 / std::sqrt(4 / (dt * dt) + w2);
-}
-
 /// The explicit step: time.dt when given (at most the stable step), else safety x stable.
 double explicitStep(const TimeSettings& ts, double stable) {
   if (ts.dt > 0) {
@@ -67,32 +26,29 @@ double explicitStep(const TimeSettings& ts, double stable) {
 } // namespace
 
 Simulation::Simulation(const Model& model)
-    : model_(model), structure_(makeStructure(model)), loads_(model),
-      cons_(model.constraints, model.numDofs()) {
-  stable_dt_ = stableWithSprings(model, *structure_, structure_->stableStep());
+    : model_(model), system_(model), structure_(system_.structure()) {
+  stable_dt_ = system_.stableStep(false);
   if (model.time.integrator == IntegratorKind::Explicit)
-    integrator_ = std::make_unique<CentralDifference>(model, *structure_, loads_, cons_,
-                                                      explicitStep(model.time, stable_dt_),
-                                                      model.time.damping);
+    integrator_ =
+        std::make_unique<CentralDifference>(system_, explicitStep(model.time, stable_dt_));
   else
-    integrator_ = std::make_unique<Newmark>(model, *structure_, loads_, cons_);
-  loads_.setStep(integrator_->timeStep()); // each step receives its interval's impulse
+    integrator_ = std::make_unique<Newmark>(system_);
+  system_.setStep(integrator_->timeStep()); // each step receives its interval's impulse
   const int ndof = model.numDofs();
   state_.u = model.u0.size() == ndof ? model.u0 : Eigen::VectorXd::Zero(ndof);
   state_.v = model.v0.size() == ndof ? model.v0 : Eigen::VectorXd::Zero(ndof);
-  cons_.prescribe(0.0, state_.v);
+  system_.constraints().prescribe(0.0, state_.v);
   if (!model.contact.empty()) {
-    loads_.setLumpedMass(lumpedMass(structure_->mass())); // the friction's cap
     state_.surfaces = initialMotion(model.contact);
     penetration_.resize(model.contact.size());
   }
-  structure_->beginStep(0.0, 0.0); // a law meets the initial displacements instantaneously
+  structure_.beginStep(0.0, 0.0); // a law meets the initial displacements instantaneously
   integrator_->init(state_);
-  structure_->commitStep();
-  u0_ = structure_->strainEnergy(state_.u);
+  structure_.commitStep();
+  u0_ = structure_.strainEnergy(state_.u);
   const Energy e = energy();
   e0_ = e.kinetic + e.strain;
-  structure_->checkFailure(state_.t, state_.u, failure_);
+  structure_.checkFailure(state_.t, state_.u, failure_);
   checkPenetration();
 }
 
@@ -117,14 +73,14 @@ void Simulation::checkPenetration() {
 }
 
 void Simulation::step() {
-  structure_->beginStep(integrator_->timeAt(state_.step + 1), integrator_->timeStep());
+  structure_.beginStep(integrator_->timeAt(state_.step + 1), integrator_->timeStep());
   integrator_->step(state_);
-  structure_->commitStep();
-  works_.add(integrator_->increment(), integrator_->previousForces(), integrator_->forces(), cons_,
-             loads_.hasExternal(), loads_.hasDrag());
-  if (structure_->hasFailureThresholds())
-    structure_->checkFailure(state_.t, state_.u, failure_);
-  if (structure_->hasHistory() && state_.step % kStableStepEvery == 0)
+  structure_.commitStep();
+  system_.addWorks(works_, integrator_->increment(), integrator_->previousForces(),
+                   integrator_->forces());
+  if (structure_.hasFailureThresholds())
+    structure_.checkFailure(state_.t, state_.u, failure_);
+  if (structure_.hasHistory() && state_.step % kStableStepEvery == 0)
     adaptStep();
   checkPenetration();
 }
@@ -132,7 +88,7 @@ void Simulation::step() {
 void Simulation::adaptStep() {
   if (model_.time.integrator != IntegratorKind::Explicit)
     return;
-  stable_dt_ = stableWithSprings(model_, *structure_, structure_->currentStableStep());
+  stable_dt_ = system_.stableStep(true);
   double target = model_.time.safety * stable_dt_;
   if (model_.time.dt > 0) // a given step is the largest the run takes
     target = std::min(target, model_.time.dt);
@@ -140,7 +96,7 @@ void Simulation::adaptStep() {
   // Shrink at once; grow back only by a margin, so that the step does not flutter.
   if (target < dt || target > kStepGrowth * dt) {
     integrator_->setTimeStep(target, state_);
-    loads_.setStep(target);
+    system_.setStep(target);
   }
 }
 
@@ -187,8 +143,8 @@ void Simulation::save(History& h) const {
   integrator_->saveHistory(own);
   for (auto& [key, value] : own)
     h[kIntegrator + key] = std::move(value);
-  structure_->saveHistory(h);
-  if (structure_->hasHistory()) // the adapted stable step (the summary reports it)
+  structure_.saveHistory(h);
+  if (structure_.hasHistory()) // the adapted stable step (the summary reports it)
     h["structure/stable_dt"] = Eigen::VectorXd::Constant(1, stable_dt_);
   if (!model_.contact.empty()) {
     const SurfaceMotion& m = state_.surfaces;
@@ -254,14 +210,14 @@ void Simulation::restore(const History& h, long last_step) {
                 "state does not fit this run; run the case again without --restart");
   const double dt = historyEntry(h, "integrator/dt", 1)[0];
   // A run whose step adapts to its laws' state (hasHistory) may have changed it.
-  if (dt != integrator_->timeStep() && !structure_->hasHistory())
+  if (dt != integrator_->timeStep() && !structure_.hasHistory())
     throw Error("checkpoint was written with the time step " + core::formatExact(dt) +
                 " s, this run's is " + core::formatExact(integrator_->timeStep()) +
                 " s (another case or another build of the program)");
   restoreIntegrator(h);
   if (dt != integrator_->timeStep())
     throw Error("checkpoint entries 'integrator/dt' and 'integrator/step' disagree");
-  loads_.setStep(dt);
+  system_.setStep(dt);
   const Eigen::Index n = model_.numDofs();
   state_.step = historyInteger(h, "state/time", 2, 1, 0, last_step);
   state_.t = historyEntry(h, "state/time", 2)[0];
@@ -278,8 +234,8 @@ void Simulation::restore(const History& h, long last_step) {
   works_ = Works{w[0], w[1], w[2], w[3], w[4], w[5]};
   restoreFailure(h);
   restoreContact(h);
-  structure_->restoreHistory(h);
-  if (structure_->hasHistory()) {
+  structure_.restoreHistory(h);
+  if (structure_.hasHistory()) {
     stable_dt_ = historyEntry(h, "structure/stable_dt", 1)[0];
     if (!(stable_dt_ > 0))
       throw Error("checkpoint entry 'structure/stable_dt' must be > 0");
@@ -329,19 +285,19 @@ void Simulation::restoreIntegrator(const History& h) {
 
 Energy Simulation::energy() const {
   Eigen::VectorXd y;
-  multiply(structure_->mass(), state_.v, y);
+  multiply(structure_.mass(), state_.v, y);
   const double T = 0.5 * state_.v.dot(y);
   // U is the stored energy; without a potential (tension-only fabric) the
   // internal work it does not hold is the wrinkling dissipation.
-  const double U = structure_->strainEnergy(state_.u);
+  const double U = structure_.strainEnergy(state_.u);
   // A law's dissipation comes from its own history; the tension-only
   // projection of elastic sections dissipates (or makes) what the internal
   // work leaves over.
-  const double D_in = structure_->inelasticDissipation();
+  const double D_in = structure_.inelasticDissipation();
   const double D_w =
-      structure_->nonConservativeWrinkling() ? works_.internal - (U - u0_) - D_in : 0.0;
+      structure_.nonConservativeWrinkling() ? works_.internal - (U - u0_) - D_in : 0.0;
   Energy e = works_.energy(T, U, e0_, D_w, D_in);
-  if (const SparseMatrix* MD = structure_->microMass()) {
+  if (const SparseMatrix* MD = structure_.microMass()) {
     multiply(*MD, state_.v, y);
     e.micro_kinetic = 0.5 * state_.v.dot(y);
   }
@@ -349,39 +305,20 @@ Energy Simulation::energy() const {
 }
 
 std::vector<Eigen::Vector3d> Simulation::reactionSums() const {
-  auto s = cons_.sums(integrator_->forces().reaction);
-  for (const auto& f : loads_.springSums(state_.u))
-    s.push_back(f);
-  const Eigen::VectorXd& c = integrator_->forces().contact.sum;
-  for (Eigen::Index k = 0; k < c.size() / 3; ++k)
-    s.emplace_back(c.segment<3>(3 * k));
-  return s;
+  return system_.reactionSums(integrator_->forces(), state_.u);
 }
 
 std::vector<std::string> Simulation::reactionNames() const {
-  std::vector<std::string> names;
-  for (const auto& c : model_.constraints)
-    names.push_back(c.name);
-  for (const auto& s : model_.springs)
-    names.push_back(s->name());
-  for (const auto& s : model_.contact)
-    names.push_back(s.name);
-  return names;
+  return system_.reactionNames();
 }
 
 Eigen::Vector3d Simulation::dragSum() const {
-  Eigen::Vector3d s = Eigen::Vector3d::Zero();
-  const auto& fd = integrator_->forces().drag;
-  if (fd.size() == 0)
-    return s;
-  for (int i = 0; i < model_.mesh.numNodes(); ++i)
-    s += fd.segment<3>(3 * i);
-  return s;
+  return system_.dragSum(integrator_->forces());
 }
 
 const SparseMatrix& Simulation::K() const {
-  LAMINA_CHECK(structure_->stiffness() != nullptr, "the model has no constant stiffness K");
-  return *structure_->stiffness();
+  LAMINA_CHECK(structure_.stiffness() != nullptr, "the model has no constant stiffness K");
+  return *structure_.stiffness();
 }
 
 } // namespace lamina::membrane

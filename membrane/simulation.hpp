@@ -1,9 +1,9 @@
 #pragma once
 /// @file simulation.hpp
-/// @brief A running simulation of one Model (system/model.hpp): the
-/// structure (model/), its loads (loads/, through system/load_set.hpp), a
-/// time integrator (integrators/) advancing the State,
-/// and the shared energy bookkeeping (integrators/energy.hpp).
+/// @brief A running simulation of one Model (system/model.hpp): its
+/// second-order system (system/second_order_system.hpp: the structure of
+/// model/ and everything acting on it), a time integrator (integrators/)
+/// stepping it, and the energy bookkeeping (system/energy.hpp).
 ///
 /// The scheme and its equations are documented with each integrator
 /// (integrators/newmark.hpp for the paper's scheme,
@@ -16,11 +16,10 @@
 /// time.safety x the current stable step (at most time.dt when given). The
 /// stable step includes the springs' and the contact penalties' stiffness.
 
-#include "membrane/integrators/energy.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/model/structure.hpp"
-#include "membrane/system/load_set.hpp"
+#include "membrane/system/energy.hpp"
 #include "membrane/system/model.hpp"
+#include "membrane/system/second_order_system.hpp"
 
 #include <Eigen/Dense>
 
@@ -78,9 +77,9 @@ public:
   /// @return global stiffness (linear model only; throws otherwise)
   const SparseMatrix& K() const;
   /// @return global mass (with point masses)
-  const SparseMatrix& M() const { return structure_->mass(); }
+  const SparseMatrix& M() const { return system_.mass(); }
   /// @return seconds spent assembling K and M
-  double assemblySeconds() const { return structure_->setupSeconds(); }
+  double assemblySeconds() const { return system_.structure().setupSeconds(); }
   /// @return seconds spent setting up the integrator (A and its solver)
   double setupSeconds() const { return integrator_->setupSeconds(); }
   /// @return iterations of the last solve (sum over drag iterations)
@@ -88,7 +87,9 @@ public:
   /// @return the time integrator
   const TimeIntegrator& integrator() const { return *integrator_; }
   /// @return the structure
-  const Structure& structure() const { return *structure_; }
+  const Structure& structure() const { return system_.structure(); }
+  /// @return the second-order system the integrator steps
+  const SecondOrderSystem& system() const { return system_; }
   /// @return the model
   const Model& model() const { return model_; }
 
@@ -128,9 +129,8 @@ private:
   /// and the deepest penetrations.
   void restoreContact(const History& h);
   const Model& model_;
-  std::unique_ptr<Structure> structure_;
-  LoadSet loads_;
-  ConstrainedDofs cons_;
+  SecondOrderSystem system_;
+  Structure& structure_; // system_'s, whose history the run steps
   std::unique_ptr<TimeIntegrator> integrator_;
   State state_;
   Works works_;

@@ -6,57 +6,30 @@
 
 namespace lamina::membrane {
 
-CentralDifference::CentralDifference(const Model& model, const Structure& structure,
-                                     const LoadSet& loads, const ConstrainedDofs& cons, double dt,
-                                     double damping)
-    : model_(model), structure_(structure), loads_(loads), cons_(cons), dt_(dt), damping_(damping) {
+CentralDifference::CentralDifference(const SecondOrderSystem& system, double dt)
+    : system_(system), cons_(system.constraints()), dt_(dt) {
   LAMINA_CHECK(dt > 0 && std::isfinite(dt), "explicit time step must be > 0");
-  LAMINA_CHECK(damping >= 0, "damping must be >= 0");
   // Row sums of the gradient inertia M_D are zero (B of a translation is 0):
   // lumping would drop micro-inertia silently
-  if (structure.microMass())
+  if (system.structure().microMass())
     throw Error("micro-inertia (a section with a dispersion zeta^2 D) needs the Newmark "
                 "scheme: its gradient mass cannot be lumped; use time.integrator = \"newmark\" "
                 "or micro_inertia = false in the section");
-  const int ndof = structure.numDofs();
+  const int ndof = system.numDofs();
   // Lumped mass: row sums (the diagonal itself for a lumped model).
-  const SparseMatrix& M = structure.mass();
-  m_ = Eigen::VectorXd::Zero(ndof);
-  for (int i = 0; i < ndof; ++i)
-    for (SparseMatrix::InnerIterator it(M, i); it; ++it)
-      m_[i] += it.value();
+  const Eigen::VectorXd& m = system.lumpedMass();
   minv_ = Eigen::VectorXd::Zero(ndof);
   for (int i = 0; i < ndof; ++i) {
-    LAMINA_CHECK(m_[i] > 0, "explicit integration: DOF ", i, " (node ",
-                 model_.mesh.nodeLabel(i / 3), ") has no mass");
-    minv_[i] = cons.mask()[i] ? 0.0 : 1.0 / m_[i];
+    LAMINA_CHECK(m[i] > 0, "explicit integration: DOF ", i, " (node ",
+                 system.model().mesh.nodeLabel(i / 3), ") has no mass");
+    minv_[i] = cons_.mask()[i] ? 0.0 : 1.0 / m[i];
   }
-  for (const auto& r : model.rigid) {
-    double m = 0;
+  for (const auto& r : system.rigidSets()) {
+    double mass = 0;
     for (int d : r.dofs)
-      m += m_[d];
-    rigid_mass_.push_back(m);
+      mass += m[d];
+    rigid_mass_.push_back(mass);
   }
-}
-
-void CentralDifference::evaluate(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-                                 const Eigen::VectorXd& su, const Eigen::VectorXd& sv,
-                                 StateForces& f) {
-  const int ndof = structure_.numDofs();
-  // Without loads or drag their forces stay the zero vectors of the first call.
-  if (loads_.hasExternal() || f.external.size() != ndof)
-    loads_.external(t, u, f.external);
-  if (loads_.hasDrag())
-    loads_.drag(u, v, f.drag);
-  else if (f.drag.size() != ndof)
-    f.drag = Eigen::VectorXd::Zero(ndof);
-  if (loads_.hasSprings())
-    loads_.springs(u, f.spring);
-  if (damping_ > 0)
-    f.damping = -damping_ * m_.cwiseProduct(v);
-  if (loads_.hasContact())
-    loads_.contact(u, v, su, sv, f.contact);
-  structure_.internalForce(u, f.internal);
 }
 
 namespace {
@@ -97,7 +70,7 @@ void accelerateRigid(const std::vector<RigidSet>& rigid, const std::vector<doubl
 
 void CentralDifference::accelerate(const StateForces& f, Eigen::VectorXd& a) const {
   // a = m^-1 (F_ext + F_drag + F_s + F_damp - f_int) in one threaded pass.
-  const int n = structure_.numDofs();
+  const int n = system_.numDofs();
   a.resize(n);
   const ForceTotal total(f, true, true);
   const double* minv = minv_.data();
@@ -105,34 +78,30 @@ void CentralDifference::accelerate(const StateForces& f, Eigen::VectorXd& a) con
 #pragma omp parallel for schedule(static) if (n > kParallelDofs)
   for (int i = 0; i < n; ++i)
     ap[i] = minv[i] * total(i);
-  accelerateRigid(model_.rigid, rigid_mass_, total, ap);
+  accelerateRigid(system_.rigidSets(), rigid_mass_, total, ap);
 }
 
-void CentralDifference::reactions(const Eigen::VectorXd& a, StateForces& f) const {
-  f.reaction.resize(static_cast<Eigen::Index>(cons_.size()));
+void CentralDifference::reactions(const Eigen::VectorXd& a, StateForces& f) {
+  // m a + f_int at the constrained DOFs; the system subtracts the forces.
+  inertia_.resize(static_cast<Eigen::Index>(cons_.size()));
+  const Eigen::VectorXd& m = system_.lumpedMass();
   for (size_t k = 0; k < cons_.size(); ++k) {
     const int d = cons_.dofs()[k];
-    double r = m_[d] * a[d] + f.internal[d] - f.external[d] - f.drag[d];
-    if (f.spring.size())
-      r -= f.spring[d];
-    if (f.damping.size())
-      r -= f.damping[d];
-    if (f.contact.force.size())
-      r -= f.contact.force[d];
-    f.reaction[static_cast<Eigen::Index>(k)] = r;
+    inertia_[static_cast<Eigen::Index>(k)] = m[d] * a[d] + f.internal[d];
   }
+  system_.reactions(inertia_, f);
 }
 
 void CentralDifference::init(State& s) {
-  evaluate(s.t, s.u, s.v, s.surfaces.u, s.surfaces.v, cur_);
+  system_.forces(s.t, s.u, s.v, s.surfaces.u, s.surfaces.v, cur_);
   accelerate(cur_, s.a);
-  if (loads_.hasContact())
-    setAccelerations(model_.contact, cur_.contact.sum, s.surfaces.a);
+  if (system_.hasContact())
+    setAccelerations(system_.model().contact, cur_.contact.sum, s.surfaces.a);
   for (int d : cons_.dofs())
     s.a[d] = 0;
   reactions(s.a, cur_);
   prev_ = cur_;
-  du_ = Eigen::VectorXd::Zero(structure_.numDofs());
+  du_ = Eigen::VectorXd::Zero(system_.numDofs());
 }
 
 void CentralDifference::setTimeStep(double dt, const State& s) {
@@ -164,7 +133,7 @@ void CentralDifference::step(State& s) {
   // v_{n+1/2}, u_{n+1} and du, then a_{n+1} and v_{n+1}.
   const double t1 = timeAt(s.step + 1);
   const double th = t_base_ + (static_cast<double>(s.step - step_base_) + 0.5) * dt_;
-  const int n = structure_.numDofs();
+  const int n = system_.numDofs();
   const double h = 0.5 * dt_, dt = dt_;
   vh_.resize(n);
   u1_.resize(n);
@@ -189,13 +158,13 @@ void CentralDifference::step(State& s) {
     du_[d] = u1_[d] - s.u[d];
     non_finite += !std::isfinite(u1_[d]);
   }
-  if (loads_.hasContact())
-    predictMotion(model_.contact, s.surfaces, t1, dt, surf1_.u, svh_);
+  if (system_.hasContact())
+    predictMotion(system_.model().contact, s.surfaces, t1, dt, surf1_.u, svh_);
   StateForces& next = prev_; // a_{n-1}'s forces are no longer needed
-  evaluate(t1, u1_, vh_, surf1_.u, svh_, next);
+  system_.forces(t1, u1_, vh_, surf1_.u, svh_, next);
   a1_.resize(n);
   v1_.resize(n);
-  const ForceTotal total(next, loads_.hasExternal(), loads_.hasDrag());
+  const ForceTotal total(next, system_.hasExternal(), system_.hasDrag());
   {
     const double *vh = vh_.data(), *minv = minv_.data();
     double *a1 = a1_.data(), *v1 = v1_.data();
@@ -206,8 +175,8 @@ void CentralDifference::step(State& s) {
       non_finite += !fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i]));
     }
   }
-  accelerateRigid(model_.rigid, rigid_mass_, total, a1_.data());
-  for (const RigidSet& r : model_.rigid)
+  accelerateRigid(system_.rigidSets(), rigid_mass_, total, a1_.data());
+  for (const RigidSet& r : system_.rigidSets())
     for (int d : r.dofs) {
       v1_[d] = vh_[d] + h * a1_[d];
       non_finite += !fixed[d] && (!std::isfinite(v1_[d]) || !std::isfinite(a1_[d]));
@@ -218,21 +187,21 @@ void CentralDifference::step(State& s) {
     a1_[d] = (v1_[d] - s.v[d]) / dt_;
     non_finite += !std::isfinite(v1_[d]) || !std::isfinite(a1_[d]);
   }
-  if (loads_.hasContact())
+  if (system_.hasContact())
     non_finite += finishSurfaces(next);
   if (non_finite > 0)
-    throwNonFinite(model_.mesh, s, t1, u1_, v1_, a1_,
+    throwNonFinite(system_.model().mesh, s, t1, u1_, v1_, a1_,
                    "; the explicit step may exceed the stable step");
   reactions(a1_, next);
   commitStep(s, t1, u1_, v1_, a1_);
-  if (loads_.hasContact())
+  if (system_.hasContact())
     std::swap(s.surfaces, surf1_);
   std::swap(prev_, cur_);
 }
 
 int CentralDifference::finishSurfaces(const StateForces& f) {
   // Prescribed surfaces: a = 0 and v1 = vh = their velocity, exactly.
-  setAccelerations(model_.contact, f.contact.sum, surf1_.a);
+  setAccelerations(system_.model().contact, f.contact.sum, surf1_.a);
   surf1_.v = svh_ + (0.5 * dt_) * surf1_.a;
   int non_finite = 0;
   for (Eigen::Index i = 0; i < surf1_.v.size(); ++i)

@@ -1,7 +1,8 @@
 #pragma once
 /// @file central_difference.hpp
-/// @brief Explicit central differences with a lumped mass, for any Structure
-/// (the large-deflection fabric, or the linear model).
+/// @brief Explicit central differences with a lumped mass, stepping a
+/// SecondOrderSystem of any structure (the large-deflection fabric, or the
+/// linear model).
 ///
 /// One step (t_n = n dt; after a change of step at (t_k, k), t_n = t_k + (n - k) dt),
 /// with m the lumped (row-sum) mass:
@@ -9,6 +10,7 @@
 ///   u_{n+1}   = u_n + dt v_{n+1/2}
 ///   m a_{n+1} = F_ext(t_{n+1}, u_{n+1}) + F_drag(u_{n+1}, v_{n+1/2}) + F_s(u_{n+1})
 ///               + F_c(u_{n+1}, v_{n+1/2}) - c m v_{n+1/2} - f_int(u_{n+1})
+///   (the forces of SecondOrderSystem::forces at t_{n+1}, u_{n+1}, v_{n+1/2})
 ///   v_{n+1}   = v_{n+1/2} + dt/2 a_{n+1}   (prescribed velocity at t_{n+1} on constrained DOFs)
 /// Velocity-dependent forces (drag, damping c) use the mid-step velocity
 /// (explicit; first order in them, exact at a steady state). The rigid
@@ -28,8 +30,7 @@
 
 #include "core/error.hpp"
 #include "membrane/integrators/time_integrator.hpp"
-#include "membrane/model/structure.hpp"
-#include "membrane/system/load_set.hpp"
+#include "membrane/system/second_order_system.hpp"
 
 #include <vector>
 
@@ -38,9 +39,8 @@ namespace lamina::membrane {
 /// Central differences on a lumped mass.
 class CentralDifference final : public TimeIntegrator {
 public:
-  /// Uses step @p dt (s) and damping @p damping (1/s). All references must outlive the scheme.
-  CentralDifference(const Model& model, const Structure& structure, const LoadSet& loads,
-                    const ConstrainedDofs& cons, double dt, double damping);
+  /// Steps @p system (which must outlive the scheme) with step @p dt (s).
+  CentralDifference(const SecondOrderSystem& system, double dt);
   void init(State& s) override;
   void step(State& s) override;
   double timeStep() const override { return dt_; }
@@ -61,30 +61,26 @@ public:
   void restoreHistory(const History& h) override;
 
 private:
-  /// The forces at time @p t, membrane displacements @p u and velocities
-  /// @p v, surfaces' displacements @p su and velocities @p sv.
-  void evaluate(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
-                const Eigen::VectorXd& su, const Eigen::VectorXd& sv, StateForces& f);
   /// The second half of the surfaces' step, once the forces @p f at t_{n+1}
   /// are known: their accelerations and velocities at t_{n+1} into surf1_
   /// (which holds the displacements); @return the count of non-finite values.
   int finishSurfaces(const StateForces& f);
   void accelerate(const StateForces& f, Eigen::VectorXd& a) const;
-  void reactions(const Eigen::VectorXd& a, StateForces& f) const;
+  /// f.reaction from the accelerations @p a (SecondOrderSystem::reactions).
+  void reactions(const Eigen::VectorXd& a, StateForces& f);
 
-  const Model& model_;
-  const Structure& structure_;
-  const LoadSet& loads_;
+  const SecondOrderSystem& system_;
   const ConstrainedDofs& cons_;
-  double dt_, damping_;
+  double dt_;
   double t_base_ = 0; // time and step of the last change of step (0, 0: none)
   long step_base_ = 0;
-  Eigen::VectorXd m_, minv_; // lumped mass and its inverse (0 on constrained DOFs)
+  Eigen::VectorXd minv_; // inverse lumped mass (0 on constrained DOFs)
   std::vector<double> rigid_mass_;
   StateForces cur_, prev_;
   Eigen::VectorXd vh_, u1_, v1_, a1_, du_;
-  SurfaceMotion surf1_; // the surfaces at t_{n+1}
-  Eigen::VectorXd svh_; // and their mid-step velocities
+  Eigen::VectorXd inertia_; // m a + f_int at the constrained DOFs
+  SurfaceMotion surf1_;     // the surfaces at t_{n+1}
+  Eigen::VectorXd svh_;     // and their mid-step velocities
 };
 
 } // namespace lamina::membrane

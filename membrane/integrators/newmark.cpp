@@ -22,32 +22,23 @@ SparseMatrix extractRows(const SparseMatrix& A, const std::vector<int>& rows) {
   return R;
 }
 
-const SparseMatrix& requireStiffness(const Structure& s) {
-  if (!s.stiffness())
+const SparseMatrix& requireStiffness(const SecondOrderSystem& system) {
+  if (!system.stiffness())
     throw Error("the Newmark scheme needs the linear model (a constant stiffness K); "
                 "use time.integrator = \"explicit\" for the large-deflection model");
-  return *s.stiffness();
-}
-
-/// @return @p K, or K + K_s (the springs' stiffness on the diagonal) in
-/// @p own when @p model has springs to the ground.
-const SparseMatrix& withSprings(const SparseMatrix& K, const Model& model, SparseMatrix& own) {
-  if (model.springs.empty())
-    return K;
-  own = K;
-  for (const auto& s : model.springs)
-    for (int d : s->dofs())
-      own.coeffRef(d, d) += s->stiffness(); // K's 3x3 diagonal blocks are stored
-  return own;
+  if (system.hasContact())
+    throw Error("the Newmark scheme does not take rigid surfaces in contact (a one-sided, "
+                "nonlinear force); use time.integrator = \"explicit\"");
+  return *system.stiffness();
 }
 } // namespace
 
-Newmark::Newmark(const Model& model, const Structure& structure, const LoadSet& loads,
-                 const ConstrainedDofs& cons)
-    : model_(model), structure_(structure), loads_(loads), cons_(cons),
-      K_(withSprings(requireStiffness(structure), model, Kown_)),
-      rigid_(model.rigid, structure.numDofs()) {
-  const auto& ts = model.time;
+Newmark::Newmark(const SecondOrderSystem& system)
+    : system_(system), model_(system.model()), cons_(system.constraints()),
+      K_(requireStiffness(system)), rigid_(system.rigidSets(), system.numDofs()) {
+  const auto& ts = model_.time;
+  const ConstrainedDofs& cons = cons_;
+  const Structure& structure = system.structure();
   LAMINA_CHECK(ts.dt > 0, "time step must be > 0");
   LAMINA_CHECK(ts.beta1 > 0, "beta1 must be > 0");
   const int ndof = structure.numDofs();
@@ -83,7 +74,7 @@ Newmark::Newmark(const Model& model, const Structure& structure, const LoadSet& 
   }
   A = rigid_.condense(A); // the free rows of Afc_ are condensed with b
   Kb_ = BlockMatrix(K_);
-  Kc_ = extractRows(K_, cons.dofs());
+  Kc_ = extractRows(*structure.stiffness(), cons.dofs()); // the system subtracts F_s
   Mc_ = extractRows(structure.mass(), cons.dofs());
   solver_ =
       std::make_unique<StepSolver>(A, ts.solver, ts.tolerance, ts.max_iterations, ts.projection);
@@ -94,14 +85,14 @@ Newmark::~Newmark() = default;
 
 void Newmark::init(State& s) {
   const auto& ts = model_.time;
-  const int ndof = structure_.numDofs();
+  const int ndof = system_.numDofs();
   cur_.external = Eigen::VectorXd::Zero(ndof);
   cur_.drag = Eigen::VectorXd::Zero(ndof);
-  loads_.external(s.t, s.u, cur_.external);
-  if (loads_.hasDrag())
-    loads_.drag(s.u, s.v, cur_.drag);
-  if (loads_.hasSprings())
-    loads_.springs(s.u, cur_.spring);
+  system_.external(s.t, s.u, cur_.external);
+  if (system_.hasDrag())
+    system_.drag(s.u, s.v, cur_.drag);
+  if (system_.hasSprings())
+    system_.springs(s.u, cur_.spring);
   // Consistent initial acceleration: M a_0 = F_0 + Fd_0 - (K + K_s) u_0 on the
   // free DOFs (condensed on the rigid sets), a_0 = 0 on the constrained ones.
   s.a = Eigen::VectorXd::Zero(ndof);
@@ -111,7 +102,7 @@ void Newmark::init(State& s) {
     b_[d] = 0;
   if (b_.norm() > 0) {
     const auto& constrained = cons_.mask();
-    SparseMatrix Mf = structure_.mass();
+    SparseMatrix Mf = system_.mass();
     for (int i = 0; i < ndof; ++i)
       for (SparseMatrix::InnerIterator it(Mf, i); it; ++it)
         if (constrained[i] || constrained[it.col()])
@@ -123,30 +114,26 @@ void Newmark::init(State& s) {
     rigid_.expand(s.a);
   }
   a_prev_ = s.a;
-  cur_.reaction.resize(static_cast<Eigen::Index>(cons_.size()));
-  reactions(s, cur_, cur_.reaction);
+  reactions(s, cur_);
   prev_ = cur_;
   next_ = cur_;
   du_ = Eigen::VectorXd::Zero(ndof);
   ac_ = Eigen::VectorXd::Zero(ndof);
 }
 
-void Newmark::reactions(const State& s, const StateForces& f, Eigen::VectorXd& r) const {
-  // R = M a + (K + K_s) u - F - F_drag at the constrained DOFs (= ... - F_s).
+void Newmark::reactions(const State& s, StateForces& f) {
+  // M a + K u at the constrained DOFs; the system subtracts the forces.
   if (cons_.empty())
     return;
-  r = Mc_ * s.a + Kc_ * s.u;
-  for (size_t k = 0; k < cons_.size(); ++k) {
-    const int d = cons_.dofs()[k];
-    r[static_cast<Eigen::Index>(k)] -= f.external[d] + f.drag[d];
-  }
+  inertia_ = Mc_ * s.a + Kc_ * s.u;
+  system_.reactions(inertia_, f);
 }
 
 void Newmark::divergedInSolve(const State& s, const DivergenceError& e, double t1) const {
   // Name the time and the node moving most in the last finite state.
   int worst = 0;
   double big = -1;
-  for (int i = 0; i < structure_.numDofs() / 3; ++i) {
+  for (int i = 0; i < system_.numDofs() / 3; ++i) {
     const double m = s.u.segment<3>(3 * i).norm() + s.v.segment<3>(3 * i).norm();
     if (!(m <= big)) {
       big = m;
@@ -167,14 +154,14 @@ void Newmark::step(State& s) {
   prescribeAccelerations(t1);
   solveAcceleration(s, t1);
   correct(s, t1);
-  if (loads_.hasSprings())
-    loads_.springs(u1_, next_.spring); // F_s at t_{n+1}, for the spring work
+  if (system_.hasSprings())
+    system_.springs(u1_, next_.spring); // F_s at t_{n+1}, for the spring work
   // Commit (a_n <- a_{n+1}, then a_{n-1} <- a_n by swaps).
   commitStep(s, t1, u1_, v1_, a1_);
   std::swap(a_prev_, a1_);
   std::swap(prev_, cur_);
   std::swap(cur_, next_);
-  reactions(s, cur_, cur_.reaction);
+  reactions(s, cur_);
 }
 
 void Newmark::predict(const State& s) {
@@ -183,7 +170,7 @@ void Newmark::predict(const State& s) {
   // fifth of a step at 300 x 300 when run one after the other on one thread).
   const auto& ts = model_.time;
   const double tau = ts.dt;
-  const int n = structure_.numDofs();
+  const int n = system_.numDofs();
   const double cu = 0.5 * tau * tau * (1 - ts.beta2), cv = tau * (1 - ts.beta1);
   ut_.resize(n);
   vt_.resize(n);
@@ -200,9 +187,9 @@ void Newmark::predict(const State& s) {
 
 void Newmark::assembleRightHandSide(const State& s, double t1) {
   const double alpha = model_.time.hht_alpha;
-  const int n = structure_.numDofs();
-  if (loads_.hasExternal())
-    loads_.external(t1, ut_, next_.external);
+  const int n = system_.numDofs();
+  if (system_.hasExternal())
+    system_.external(t1, ut_, next_.external);
   Kb_.multiply(ut_, ku_);
   // Right-hand side without drag: (1+alpha)(F1 - K u~) - alpha (F_n + Fd_n - K u_n).
   b_.resize(n);
@@ -236,7 +223,7 @@ void Newmark::prescribeAccelerations(double t1) {
 void Newmark::solveAcceleration(const State& s, double t1) {
   const auto& ts = model_.time;
   const double tau = ts.dt, alpha = ts.hht_alpha;
-  const bool has_drag = loads_.hasDrag();
+  const bool has_drag = system_.hasDrag();
   last_iterations_ = 0;
   const int passes = has_drag ? ts.drag_iterations : 1;
   for (int pass = 0; pass < passes; ++pass) {
@@ -246,7 +233,7 @@ void Newmark::solveAcceleration(const State& s, double t1) {
       std::swap(tmp_, b_); // b_ is not needed again
     if (has_drag) {
       v1_ = vt_ + (ts.beta1 * tau) * a1_;
-      loads_.drag(ut_, v1_, next_.drag);
+      system_.drag(ut_, v1_, next_.drag);
       tmp_ += (1 + alpha) * next_.drag;
     }
     for (int d : cons_.dofs())
@@ -270,14 +257,14 @@ void Newmark::solveAcceleration(const State& s, double t1) {
   if (has_drag) {
     // Drag consistent with the final a_{n+1}, as used in the balance.
     v1_ = vt_ + (ts.beta1 * tau) * a1_;
-    loads_.drag(ut_, v1_, next_.drag);
+    system_.drag(ut_, v1_, next_.drag);
   }
 }
 
 void Newmark::correct(const State& s, double t1) {
   // u_{n+1}, v_{n+1} and the increment in one threaded pass, counting
   // non-finite values on the way.
-  const int n = structure_.numDofs();
+  const int n = system_.numDofs();
   u1_.resize(n);
   v1_.resize(n);
   du_.resize(n);
@@ -307,7 +294,7 @@ void Newmark::saveHistory(History& h) const {
 }
 
 void Newmark::restoreHistory(const History& h) {
-  const Eigen::Index n = structure_.numDofs();
+  const Eigen::Index n = system_.numDofs();
   a_prev_ = historyEntry(h, "a_prev", n);
   last_iterations_ = static_cast<int>(
       historyInteger(h, "last_iterations", 1, 0, 0, std::numeric_limits<int>::max()));

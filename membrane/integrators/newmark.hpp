@@ -1,8 +1,8 @@
 #pragma once
 /// @file newmark.hpp
 /// @brief The Newmark scheme of the membrane paper (eq. 30) with HHT-alpha,
-/// constraints, implicit drag, springs to the ground and rigid sets, for a
-/// linear Structure (constant K).
+/// constraints, implicit drag, springs to the ground and rigid sets, stepping
+/// the SecondOrderSystem of a linear structure (constant K).
 ///
 /// Equation: M a + K u = F(t) + F_drag(v) + F_s(u) + R, with R the reactions
 /// at the constrained DOFs (zero elsewhere) and F_s = -K_s u the springs to
@@ -27,7 +27,8 @@
 /// T^T b, so each set takes one acceleration, its total force over its
 /// total "mass" (the sum of its rows of A).
 ///
-/// Reactions: R = M a + K u - F - F_drag - F_s at the constrained DOFs. With the
+/// Reactions: R = M a + K u - F - F_drag - F_s at the constrained DOFs
+/// (SecondOrderSystem::reactions, from M a + K u there). With the
 /// works of energy.hpp, E_n - E_0 - W_n = 0 exactly in exact arithmetic for
 /// beta1 = beta2 = 1/2 and alpha = 0 (the identity of the
 /// average-acceleration rule).
@@ -37,8 +38,7 @@
 #include "membrane/integrators/step_solver.hpp"
 #include "membrane/integrators/time_integrator.hpp"
 #include "membrane/model/block_matrix.hpp"
-#include "membrane/model/structure.hpp"
-#include "membrane/system/load_set.hpp"
+#include "membrane/system/second_order_system.hpp"
 
 #include <memory>
 #include <vector>
@@ -49,14 +49,14 @@ namespace lamina::membrane {
 class Newmark final : public TimeIntegrator {
 public:
   /// Builds A = M + c (K + K_s) with the constraints and the rigid sets' condensation and sets up
-  /// its solver (settings from model.time). Throws lamina::Error when @p structure has no constant
-  /// stiffness. All arguments must outlive the scheme.
-  Newmark(const Model& model, const Structure& structure, const LoadSet& loads,
-          const ConstrainedDofs& cons);
+  /// its solver (settings from the model's time). Throws lamina::Error when @p system's structure
+  /// has no constant stiffness, or the system has rigid surfaces in contact. @p system must
+  /// outlive the scheme.
+  explicit Newmark(const SecondOrderSystem& system);
   ~Newmark() override;
   void init(State& s) override;
   void step(State& s) override;
-  double timeStep() const override { return model_.time.dt; }
+  double timeStep() const override { return system_.model().time.dt; }
   const StateForces& forces() const override { return cur_; }
   const StateForces& previousForces() const override { return prev_; }
   const Eigen::VectorXd& increment() const override { return du_; }
@@ -85,22 +85,21 @@ private:
   /// u_{n+1}, v_{n+1} and the increment (u1_, v1_, du_); throws
   /// DivergenceError (throwNonFinite) before a non-finite state is committed.
   void correct(const State& s, double t1);
-  void reactions(const State& s, const StateForces& f, Eigen::VectorXd& r) const;
+  /// f.reaction at the state @p s (SecondOrderSystem::reactions).
+  void reactions(const State& s, StateForces& f);
   [[noreturn]] void divergedInSolve(const State& s, const DivergenceError& e, double t1) const;
 
+  const SecondOrderSystem& system_;
   const Model& model_;
-  const Structure& structure_;
-  const LoadSet& loads_;
   const ConstrainedDofs& cons_;
-  SparseMatrix Kown_;       // K + K_s when the model has springs (else empty)
-  const SparseMatrix& K_;   // the stiffness of the step: K, or Kown_
-  RigidCondensation rigid_; // a = T a_r of the rigid sets
-  SparseMatrix Afc_, Kc_, Mc_;
-  BlockMatrix Kb_; // K in 3x3 blocks for the per-step K u~
+  const SparseMatrix& K_;      // the stiffness of the step: K + K_s (the system's)
+  RigidCondensation rigid_;    // a = T a_r of the rigid sets
+  SparseMatrix Afc_, Kc_, Mc_; // Kc_, Mc_: the constrained rows of K (no springs) and M
+  BlockMatrix Kb_;             // K in 3x3 blocks for the per-step K u~
   std::unique_ptr<StepSolver> solver_;
   StateForces cur_, prev_, next_;
   Eigen::VectorXd a_prev_; // a_{n-1}: the CG start extrapolates a linearly
-  Eigen::VectorXd ut_, vt_, ku_, b_, a1_, u1_, v1_, ac_, tmp_, du_;
+  Eigen::VectorXd ut_, vt_, ku_, b_, a1_, u1_, v1_, ac_, tmp_, du_, inertia_;
   double c_ = 0, setup_s_ = 0;
   int last_iterations_ = 0;
 };

@@ -2,10 +2,11 @@
 /// @file time_integrator.hpp
 /// @brief The seam between a membrane model and a time-stepping scheme, in
 /// the spirit of MFEM's SecondOrderODESolver: a scheme advances the state of
-/// the second-order system
-///   M a + f_int(u) = F_ext(t, u) + F_drag(u, v) + R
-/// (Structure: M and f_int; LoadSet: F_ext and F_drag; R the reactions at
-/// the constrained DOFs, whose velocities are prescribed).
+/// a SecondOrderSystem (system/second_order_system.hpp)
+///   M a + f_int(u) = F(t, u, v) + R,
+/// which gives it the forces at a state, the reactions R at the constrained
+/// DOFs (whose velocities are prescribed) and the works; a scheme only
+/// steps it and never knows which loads a case has.
 ///
 /// Meaning of the state on entry and exit:
 /// - init(s): on entry s.t, s.step, s.u and s.v hold the initial state (the
@@ -21,7 +22,8 @@
 ///   non-finite result s is left unchanged and lamina::DivergenceError is
 ///   thrown naming the time and the node.
 /// The works of the forces and the energy balance are kept outside the
-/// schemes (energy.hpp), from increment() and the forces at both ends.
+/// schemes (SecondOrderSystem::addWorks, system/energy.hpp), from increment() and the forces at
+/// both ends.
 ///
 /// Checkpoints: saveHistory() puts into a History everything step() reads
 /// besides the State (forces at t_n, past accelerations, solver history);
@@ -29,9 +31,8 @@
 /// model puts it back, after which step() continues bit for bit as the
 /// scheme that saved it would have.
 
-#include "membrane/loads/contact.hpp"
-#include "membrane/model/history.hpp"
 #include "membrane/model/mesh.hpp"
+#include "membrane/system/state.hpp"
 
 #include <Eigen/Dense>
 
@@ -40,27 +41,6 @@
 
 namespace lamina::membrane {
 
-/// The state of the system at one time: what a checkpoint must hold.
-struct State {
-  double t = 0;           ///< time (s)
-  long step = 0;          ///< steps taken
-  Eigen::VectorXd u;      ///< displacements (m), 3 per node
-  Eigen::VectorXd v;      ///< velocities (m/s)
-  Eigen::VectorXd a;      ///< accelerations (m/s^2)
-  SurfaceMotion surfaces; ///< the rigid surfaces' motion (contact.hpp; empty: none)
-};
-
-/// Forces acting at one state.
-struct StateForces {
-  Eigen::VectorXd external; ///< loads F_ext (N, 3 per node)
-  Eigen::VectorXd drag;     ///< drag F_drag (N)
-  Eigen::VectorXd reaction; ///< R at each constrained DOF, in ConstrainedDofs order (N)
-  Eigen::VectorXd spring;   ///< springs to the ground (N; empty: none)
-  Eigen::VectorXd damping;  ///< mass-proportional damping -c M v (N; empty: none)
-  Eigen::VectorXd internal; ///< internal force f_int (N; empty: not kept by the scheme)
-  ContactResult contact;    ///< rigid surfaces' contact forces and sums (empty: none)
-};
-
 /// Linear-solver statistics of a scheme (zero for explicit schemes).
 struct SolverStats {
   long solves = 0;         ///< linear solves so far
@@ -68,13 +48,6 @@ struct SolverStats {
   int last_iterations = 0; ///< iterations of the last step
 };
 
-/// Saves the non-empty members of @p f under "<prefix>external", "<prefix>drag", ...
-void saveForces(const std::string& prefix, const StateForces& f, History& h);
-/// Restores what saveForces() wrote into @p f, which holds the forces of
-/// the same scheme as init() left them: an entry must be present exactly for
-/// the members that are non-empty there, with their sizes (a checkpoint is
-/// input: a missing, extra or mis-sized entry throws lamina::Error naming it).
-void restoreForces(const std::string& prefix, const History& h, StateForces& f);
 /// A time-stepping scheme (see the file comment for the contract).
 class TimeIntegrator {
 public:
@@ -110,9 +83,6 @@ public:
   /// lamina::Error naming a missing or mis-sized entry.
   virtual void restoreHistory(const History& h) = 0;
 };
-
-/// Below this many DOFs the vector loops of a step stay on one thread.
-inline constexpr int kParallelDofs = 30000;
 
 /// Commits a finite step of both schemes: @p s takes @p u1, @p v1, @p a1
 /// by swaps (on return they hold u_n, v_n, a_n), s.t = @p t1 and s.step + 1.

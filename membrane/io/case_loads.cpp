@@ -10,6 +10,7 @@
 #include "membrane/loads/blast_pressure.hpp"
 #include "membrane/loads/drag.hpp"
 #include "membrane/loads/element_pressure.hpp"
+#include "membrane/loads/traction.hpp"
 
 #include <algorithm>
 #include <array>
@@ -23,25 +24,6 @@
 namespace lamina::membrane::case_io {
 
 namespace {
-
-/// Consistent nodal forces of a traction b(x, y) (N/m^2) on the elements,
-/// integrated with the 3-point edge-midpoint rule (exact for quadratics).
-template <typename F>
-void addTraction(const Mesh& m, const std::vector<int>& elems, const Eigen::Vector3d& dir,
-                 F&& traction, Eigen::VectorXd& f) {
-  for (int e : elems) {
-    const auto& t = m.triangles[e];
-    const double A = m.area(e);
-    for (int q = 0; q < 3; ++q) {
-      // Midpoint of edge (q, q+1): N_q = N_{q+1} = 1/2, the third is 0.
-      const Eigen::Vector2d p = 0.5 * (m.nodes[t[q]] + m.nodes[t[(q + 1) % 3]]);
-      const double w = A / 3 * traction(p);
-      for (int k : {q, (q + 1) % 3})
-        for (int c = 0; c < 3; ++c)
-          f[3 * t[k] + c] += 0.5 * w * dir[c];
-    }
-  }
-}
 
 /// What a [[load]] is (its `type`).
 enum class LoadType { Force, Pressure, Distributed };
@@ -92,18 +74,12 @@ void readLoadTables(const core::TableReader& root, Model& model) {
       break;
     }
     case LoadType::Pressure: {
-      const double p = r.getDouble("value");
-      const auto elems = selectElements(mesh, readSelectorOrAll(r), r);
-      if (model.kind == ModelKind::LargeDeflection) {
-        // Follows the surface: current normal, current area.
-        model.surface_loads.push_back(
-            std::make_shared<UniformPressure>(load.name, elems, p, TimeProfile::read(r)));
-        continue;
-      }
-      addTraction(
-          mesh, elems, Eigen::Vector3d::UnitZ(), [&](const Eigen::Vector2d&) { return p; },
-          load.pattern);
-      break;
+      // The large-deflection model's follows the surface (current normal,
+      // current area); the linear model's acts on the flat reference membrane.
+      model.surface_loads.push_back(std::make_shared<UniformPressure>(
+          load.name, mesh, selectElements(mesh, readSelectorOrAll(r), r), r.getDouble("value"),
+          TimeProfile::read(r), surfaceGeometry(model.kind)));
+      continue;
     }
     case LoadType::Distributed: {
       // eq. (31): b = b0 cos^2(pi r / (2 L)) for r <= L, normal to the membrane,
@@ -187,12 +163,11 @@ void readLoads(const core::TableReader& root, Model& model) {
 }
 
 /// [[blast]]: an air blast from a charge (Kingery-Bulmash, Friedlander,
-/// angle of incidence) or a user pressure history (CSV), acting as a
-/// follower pressure on the selected elements (all by default).
+/// angle of incidence) or a user pressure history (CSV), acting on the
+/// selected elements (all by default): a follower pressure on the
+/// large-deflection model, along e_z on the linear model's flat membrane.
 void readBlasts(const core::TableReader& root, Model& model, const std::filesystem::path& path) {
   for (const auto& r : root.tableArray("blast")) {
-    if (model.kind != ModelKind::LargeDeflection)
-      r.failHere("[[blast]] needs model = \"large_deflection\" (a follower load)");
     const auto elems = selectElements(model.mesh, readSelectorOrAll(r), r);
     const std::string name =
         r.getString("name", "blast" + std::to_string(model.surface_loads.size()));
@@ -201,8 +176,8 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
         r.fail("table", "give either charge (a Kingery-Bulmash blast) or table (a pressure "
                         "history), not both");
       const auto csv = path.parent_path() / r.getString("table");
-      model.surface_loads.push_back(
-          std::make_shared<BlastPressure>(name, elems, PressureTable::readCsv(csv.string())));
+      model.surface_loads.push_back(std::make_shared<BlastPressure>(
+          name, elems, PressureTable::readCsv(csv.string()), surfaceGeometry(model.kind)));
       continue;
     }
     BlastCharge c;
@@ -221,7 +196,8 @@ void readBlasts(const core::TableReader& root, Model& model, const std::filesyst
         r.getChoice("out_of_range", {{"refuse", OutOfRange::Refuse}, {"clamp", OutOfRange::Clamp}},
                     OutOfRange::Refuse);
     try {
-      model.surface_loads.push_back(std::make_shared<BlastPressure>(name, elems, model.mesh, c));
+      model.surface_loads.push_back(
+          std::make_shared<BlastPressure>(name, elems, model.mesh, c, surfaceGeometry(model.kind)));
     } catch (const Error& e) {
       r.fail("charge", e.message());
     }
@@ -246,7 +222,7 @@ void readDrags(const core::TableReader& root, Model& model) {
       r.fail("fluid_density", "must be > 0");
     d.speed = r.getChoice("velocity", kDragSpeedNames, DragSpeed::Normal);
     const bool large = model.kind == ModelKind::LargeDeflection;
-    d.geometry = large ? Geometry::Current : Geometry::Reference;
+    d.geometry = surfaceGeometry(model.kind);
     for (const char* key : {"area", "normal"})
       if (!large && r.has(key))
         r.fail(key, "applies to the large-deflection model only: the linear model's drag acts "

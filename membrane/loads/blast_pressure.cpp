@@ -6,10 +6,10 @@
 namespace lamina::membrane {
 
 BlastPressure::BlastPressure(std::string name, std::vector<int> elements, const Mesh& mesh,
-                             const BlastCharge& charge)
-    : ElementPressure(std::move(name), elements), charge_(charge), loaded_(std::move(elements)) {
+                             const BlastCharge& charge, Geometry geometry)
+    : ElementPressure(std::move(name), std::move(elements), geometry), charge_(charge) {
   histories_.resize(static_cast<std::size_t>(mesh.numElements()));
-  for (const int e : loaded_) {
+  for (const int e : this->elements()) {
     const auto& tri = mesh.triangles[static_cast<std::size_t>(e)];
     const Eigen::Vector3d c = (mesh.point(tri[0]) + mesh.point(tri[1]) + mesh.point(tri[2])) / 3.0;
     try {
@@ -21,9 +21,9 @@ BlastPressure::BlastPressure(std::string name, std::vector<int> elements, const 
   }
 }
 
-BlastPressure::BlastPressure(std::string name, std::vector<int> elements, PressureTable table)
-    : ElementPressure(std::move(name), elements), loaded_(std::move(elements)),
-      table_(std::move(table)) {}
+BlastPressure::BlastPressure(std::string name, std::vector<int> elements, PressureTable table,
+                             Geometry geometry)
+    : ElementPressure(std::move(name), std::move(elements), geometry), table_(std::move(table)) {}
 
 double BlastPressure::pressure(int e, const Eigen::Vector3d& x, const Eigen::Vector3d& n,
                                const LoadTime& when) const {
@@ -47,7 +47,7 @@ double BlastPressure::firstArrival() const {
   if (table_)
     return table_->times().front();
   double t = std::numeric_limits<double>::infinity();
-  for (const int e : loaded_)
+  for (const int e : elements())
     t = std::min(t, histories_[static_cast<std::size_t>(e)].arrival);
   return t;
 }
@@ -56,7 +56,7 @@ double BlastPressure::shortestPhase() const {
   if (table_)
     return table_->times().back() - table_->times().front();
   double d = std::numeric_limits<double>::infinity();
-  for (const int e : loaded_)
+  for (const int e : elements())
     d = std::min(d, histories_[static_cast<std::size_t>(e)].incident.duration);
   return d;
 }
@@ -65,7 +65,7 @@ double BlastPressure::lastEnd() const {
   if (table_)
     return table_->times().back();
   double t = 0;
-  for (const int e : loaded_) {
+  for (const int e : elements()) {
     const auto& h = histories_[static_cast<std::size_t>(e)];
     t = std::max(t, h.arrival + h.incident.duration);
   }

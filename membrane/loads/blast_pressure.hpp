@@ -1,10 +1,12 @@
 #pragma once
 /// @file blast_pressure.hpp
-/// @brief The air blast (or a user pressure history) as a follower load:
-/// pressure on each element along its current normal, on its current area,
-/// on the face that sees the charge (ElementPressure distributes it).
+/// @brief The air blast (or a user pressure history) as a pressure load on
+/// the face that sees the charge: along each element's current normal on
+/// its current area (the large-deflection model), or along e_z on the flat
+/// reference membrane (the linear model); ElementPressure distributes it.
 ///
-/// Per element e with current centroid x and unit normal n (node order):
+/// Per element e with centroid x and unit normal n (current, in node order;
+/// or reference, e_z):
 /// d = (charge - x) / |charge - x|, cos a = |n . d|, and the signed pressure
 /// along n is p = -sign(n . d) P(t, cos a): it pushes the seen face away
 /// from the charge. P combines the incident and the normally reflected
@@ -24,12 +26,14 @@ namespace lamina::membrane {
 /// Blast or tabulated pressure on a set of elements.
 class BlastPressure final : public ElementPressure {
 public:
-  /// The blast of @p charge on @p elements of @p mesh. An Error names the
-  /// first element whose scaled distance is outside the fits (Refuse policy).
+  /// The blast of @p charge on @p elements of @p mesh in @p geometry. An
+  /// Error names the first element whose scaled distance is outside the
+  /// fits (Refuse policy).
   BlastPressure(std::string name, std::vector<int> elements, const Mesh& mesh,
-                const BlastCharge& charge);
-  /// The pressure history @p table on @p elements, along +n.
-  BlastPressure(std::string name, std::vector<int> elements, PressureTable table);
+                const BlastCharge& charge, Geometry geometry);
+  /// The pressure history @p table on @p elements in @p geometry, along +n.
+  BlastPressure(std::string name, std::vector<int> elements, PressureTable table,
+                Geometry geometry);
   /// @return the earliest arrival (s; table: its first time)
   double firstArrival() const;
   /// @return the latest end of a positive phase (s; table: its last time)
@@ -45,7 +49,6 @@ protected:
 private:
   std::optional<BlastCharge> charge_;
   std::vector<BlastHistory> histories_; ///< indexed by element (blast only)
-  std::vector<int> loaded_;             ///< the loaded elements
   std::optional<PressureTable> table_;
 };
 

@@ -43,6 +43,13 @@ enum class ModelKind {
 inline constexpr auto kModelKindNames = core::enumNames<ModelKind>(
     {{"linear", ModelKind::Linear}, {"large_deflection", ModelKind::LargeDeflection}});
 
+/// @return the geometry the surface loads (pressures, drag) of a model of
+/// kind @p kind act on: the linear model's flat reference membrane, the
+/// large-deflection model's current surface.
+inline Geometry surfaceGeometry(ModelKind kind) {
+  return kind == ModelKind::LargeDeflection ? Geometry::Current : Geometry::Reference;
+}
+
 /// The time integrator of a case (key `time.integrator`).
 enum class IntegratorKind {
   Newmark, ///< the paper's Newmark / HHT-alpha (linear model only; its default)

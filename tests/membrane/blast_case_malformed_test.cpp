@@ -47,17 +47,3 @@ TEST(BlastCaseMalformed, ErrorsNameTheKey) {
       errorOf("charge = 1000.0\nposition = [0.5, 0.5, -0.3]\nout_of_range = \"clamp\"\n");
   EXPECT_EQ(clamp, "");
 }
-
-TEST(BlastCaseMalformed, LinearModelRefusesTheBlast) {
-  std::string text = kPanel + "[[blast]]\ncharge = 0.05\nposition = [0.5, 0.5, -2.0]\n";
-  text.replace(text.find("model = \"large_deflection\""), 26, "model = \"linear\"");
-  text.replace(text.find("integrator = \"explicit\""), 23, "dt = 1.0e-5");
-  text.replace(text.find("safety = 0.5"), 12, "");
-  text.replace(text.find("tension_only = true"), 19, "");
-  try {
-    test::modelFromText(text, "linear-blast.toml");
-    FAIL() << "a blast on the linear model must be refused";
-  } catch (const lamina::Error& e) {
-    EXPECT_TRUE(has(e.what(), "[[blast]] needs model = \"large_deflection\"")) << e.what();
-  }
-}

@@ -2,7 +2,7 @@
 // the charge receives the normally reflected impulse times its area, one seen edge-on only the
 // incident impulse times its area, and the load follows the panel when it
 // turns. A user pressure table gives its impulse times the area. Over time
-// steps (the means LoadSet gives each step), the steps together receive the
+// steps (the means SecondOrderSystem::external gives each step), the steps together receive the
 // impulse whatever the step, also one longer than the whole pulse.
 #include "membrane/loads/blast_pressure.hpp"
 #include "membrane/model/mesh.hpp"
@@ -83,7 +83,7 @@ constexpr double kTol = 3e-3;
 TEST(BlastPressure, FaceOnPanelReceivesReflectedImpulseTimesArea) {
   const BlastCharge charge = tenKg();
   const Panel p = panel({0, 0, 5.0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 0.2, 4);
-  const BlastPressure load("blast", p.elements, p.mesh, charge);
+  const BlastPressure load("blast", p.elements, p.mesh, charge, Geometry::Current);
   const BlastParameters bp = kingeryBulmash(10.0, 5.0, Burst::Hemispherical);
   const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * p.mesh.numNodes());
   const Eigen::Vector3d J =
@@ -97,7 +97,7 @@ TEST(BlastPressure, EdgeOnPanelReceivesIncidentImpulseOnly) {
   const BlastCharge charge = tenKg();
   // Plane x = 0, containing the direction to the charge: cos a = 0.
   const Panel p = panel({0, 0, 5.0}, Eigen::Vector3d::UnitY(), Eigen::Vector3d::UnitZ(), 0.2, 4);
-  const BlastPressure load("blast", p.elements, p.mesh, charge);
+  const BlastPressure load("blast", p.elements, p.mesh, charge, Geometry::Current);
   const BlastParameters bp = kingeryBulmash(10.0, 5.0, Burst::Hemispherical);
   const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * p.mesh.numNodes());
   const Eigen::Vector3d J =
@@ -112,7 +112,7 @@ TEST(BlastPressure, EdgeOnPanelReceivesIncidentImpulseOnly) {
 TEST(BlastPressure, LoadFollowsTheTurnedPanel) {
   const BlastCharge charge = tenKg();
   const Panel p = panel({0, 0, 5.0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 0.2, 4);
-  const BlastPressure load("blast", p.elements, p.mesh, charge);
+  const BlastPressure load("blast", p.elements, p.mesh, charge, Geometry::Current);
   Eigen::VectorXd u(3 * p.mesh.numNodes());
   for (int i = 0; i < p.mesh.numNodes(); ++i) { // x -> z about the line x = 0, z = 5
     const Eigen::Vector3d r = p.mesh.point(i) - Eigen::Vector3d(0, 0, 5.0);
@@ -132,7 +132,7 @@ TEST(BlastPressure, LoadFollowsTheTurnedPanel) {
 TEST(BlastPressure, PressureTableGivesItsImpulseTimesArea) {
   const Panel p = panel({1, 2, 3}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 0.5, 3);
   const PressureTable table({0.0, 1e-3, 3e-3}, {0.0, 2e5, 0.0});
-  const BlastPressure load("table", p.elements, table);
+  const BlastPressure load("table", p.elements, table, Geometry::Current);
   const Eigen::VectorXd u = Eigen::VectorXd::Zero(3 * p.mesh.numNodes());
   const Eigen::Vector3d J = forceImpulse(load, p, u, 0.0, 3e-3, 3000);
   EXPECT_NEAR(J.z() / (table.impulse() * p.area), 1.0, 1e-12);
@@ -142,7 +142,7 @@ namespace {
 /// The impulse a scheme of step @p dt delivers from @p load (starting at
 /// t = 0, up to @p t_end): sum over the steps of the total force at t_n
 /// times the time it acts for, dt (dt / 2 at t = 0), the force being the
-/// mean over [t_n - dt/2, t_n + dt/2] as LoadSet gives it (@p mean), or the
+/// mean over [t_n - dt/2, t_n + dt/2] as SecondOrderSystem::external gives it (@p mean), or the
 /// value at t_n (a sample, what the schemes used before).
 Eigen::Vector3d stepImpulse(const BlastPressure& load, const Panel& p, double dt, double t_end,
                             bool mean) {
@@ -168,7 +168,7 @@ Eigen::Vector3d stepImpulse(const BlastPressure& load, const Panel& p, double dt
 TEST(BlastPressure, StepsReceiveTheImpulseWhateverTheStep) {
   const BlastCharge charge = tenKg();
   const Panel p = panel({0, 0, 5.0}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 0.2, 4);
-  const BlastPressure load("blast", p.elements, p.mesh, charge);
+  const BlastPressure load("blast", p.elements, p.mesh, charge, Geometry::Current);
   const BlastParameters bp = kingeryBulmash(10.0, 5.0, Burst::Hemispherical);
   const double td = bp.positive_duration, end = load.lastEnd() + 10 * td;
   for (const double ratio : {0.1, 0.37, 1.0, 1.3, 7.0, 7.31, 7.77, 23.0}) {
@@ -189,7 +189,7 @@ TEST(BlastPressure, StepsReceiveTheImpulseWhateverTheStep) {
 TEST(BlastPressure, TableStepsReceiveItsImpulseWhateverTheStep) {
   const Panel p = panel({1, 2, 3}, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY(), 0.5, 3);
   const PressureTable table({0.4e-3, 1e-3, 1.3e-3, 3e-3}, {5e4, 2e5, -1e4, 3e4});
-  const BlastPressure load("table", p.elements, table);
+  const BlastPressure load("table", p.elements, table, Geometry::Current);
   // The same impulse by hand: trapezoids of the rows (the jumps at both
   // ends are part of the history: 0 outside).
   const double impulse =

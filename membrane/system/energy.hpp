@@ -1,6 +1,7 @@
 #pragma once
 /// @file energy.hpp
-/// @brief Energy bookkeeping shared by all time integrators.
+/// @brief Energy bookkeeping of the second-order system, the same for every
+/// time integrator (SecondOrderSystem::addWorks).
 ///
 /// Works by the trapezoidal rule over each step,
 ///   W += (u_{n+1} - u_n).(F_n + F_{n+1}) / 2,
@@ -18,8 +19,8 @@
 /// (beta1 = beta2 = 1/2, alpha = 0) the balance is zero in exact arithmetic. The dot products of
 /// the works are threaded on large models (on one thread Eigen's, unchanged).
 
-#include "membrane/integrators/time_integrator.hpp"
 #include "membrane/model/constraint.hpp"
+#include "membrane/system/state.hpp"
 
 namespace lamina::membrane {
 

@@ -1,4 +1,4 @@
-#include "membrane/integrators/energy.hpp"
+#include "membrane/system/energy.hpp"
 
 #include "core/parallel.hpp"
 
