@@ -47,12 +47,7 @@ std::string coarseRoof(const std::filesystem::path& geo_path) {
 // differences conserve energy to O(dt^2); the trapezoidal work over the
 // steps adds the same order; the 1 % bounds both at safety 0.5).
 TEST(BlastRoof, EnergyBalanceClosesWithBlastWork) {
-  const std::string text = test::blastPanel(8, 0.02) + R"(
-[[blast]]
-charge = 0.05
-position = [0.5, 0.5, -2.0]
-burst = "hemispherical"
-[output]
+  const std::string text = test::blastPanel(8, 0.02) + test::kPanelBlast + R"([output]
 fields = false
 )";
   const auto s = runText(text, "blast-energy");

@@ -29,18 +29,6 @@ Model fabricSquare(int nx, const std::string& section_extra, const std::string& 
       "[time]\nintegrator = \"explicit\"\n" + extra);
 }
 
-/// Every node moves with velocity (rx x, ry y, 0): F = diag(1 + rx t, 1 + ry t).
-Constraint uniformStretch(const Mesh& mesh, double rx, double ry) {
-  Constraint c;
-  c.name = "stretch";
-  for (int i = 0; i < mesh.numNodes(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      c.dofs.push_back(3 * i + k);
-      c.amplitude.push_back(k == 0 ? rx * mesh.nodes[i].x() : k == 1 ? ry * mesh.nodes[i].y() : 0);
-    }
-  return c;
-}
-
 /// The law's strain of a stretch l reached in equal steps from 1: the sum of
 /// the midpoint increments 2 (l_k - l_{k-1}) / (l_k + l_{k-1}) (kinematics.hpp,
 /// exact for a diagonal F), which tends to ln l.
@@ -66,7 +54,7 @@ TEST(FabricLawSection, WarpStretchGivesTheClosedFormMembraneForce) {
   const int steps = 100;
   const double dt = 0.1 / rate / steps;
   Model m = fabricSquare(1, "", "dt = " + core::formatExact(dt) + "\nt_end = 1.0\n");
-  m.constraints = {uniformStretch(m.mesh, rate, 0.0)};
+  m.constraints = {test::uniformStretch(m.mesh, rate, 0.0)};
   Simulation sim(m);
   const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());
   MidpointStrain x;
@@ -102,7 +90,7 @@ TEST(FabricLawSection, MaterialAxisIsTheWarp) {
   const double dt = 0.005 / steps;
   Model m = fabricSquare(1, "material_axis = [0.0, 1.0, 0.0]\n",
                          "dt = " + core::formatExact(dt) + "\nt_end = 1.0\n");
-  m.constraints = {uniformStretch(m.mesh, rx, ry)};
+  m.constraints = {test::uniformStretch(m.mesh, rx, ry)};
   Simulation sim(m);
   const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());
   MidpointStrain x, y;
@@ -126,7 +114,7 @@ TEST(FabricLawSection, CompressionGivesNoForce) {
   const int steps = 50;
   const double dt = 0.005 / steps;
   Model m = fabricSquare(1, "", "dt = " + core::formatExact(dt) + "\nt_end = 1.0\n");
-  m.constraints = {uniformStretch(m.mesh, -10.0, -10.0)};
+  m.constraints = {test::uniformStretch(m.mesh, -10.0, -10.0)};
   Simulation sim(m);
   const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());
   for (int n = 1; n <= steps; ++n) {

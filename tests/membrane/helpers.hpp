@@ -114,6 +114,35 @@ inline std::string blastPanel(int nx, double t_end) {
          core::formatExact(t_end) + "\n[[fixed]]\nnodes = \"edges\"\n";
 }
 
+/// The [[blast]] of the blast panel's tests: 0.05 kg TNT 2 m below the
+/// centre of the blastPanel() square, hemispherical.
+inline const std::string kPanelBlast = R"(
+[[blast]]
+charge = 0.05
+position = [0.5, 0.5, -2.0]
+burst = "hemispherical"
+)";
+
+/// TOML of a rigid set tying the z of the nodes @p nodes (a selector value,
+/// e.g. "right") together, on springs of @p stiffness N/m each in z.
+inline std::string rigidOnSprings(const std::string& nodes, double stiffness) {
+  return "[[rigid]]\nnodes = \"" + nodes + "\"\ncomponents = \"z\"\n[[spring]]\nnodes = \"" +
+         nodes + "\"\ncomponents = \"z\"\nstiffness = " + core::formatExact(stiffness) + "\n";
+}
+
+/// A constraint moving every node of @p mesh with velocity (rx x, ry y, 0):
+/// the uniform in-plane stretch F = diag(1 + rx t, 1 + ry t).
+inline Constraint uniformStretch(const Mesh& mesh, double rx, double ry) {
+  Constraint c;
+  c.name = "stretch";
+  for (int i = 0; i < mesh.numNodes(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      c.dofs.push_back(3 * i + k);
+      c.amplitude.push_back(k == 0 ? rx * mesh.nodes[i].x() : k == 1 ? ry * mesh.nodes[i].y() : 0);
+    }
+  return c;
+}
+
 /// Largest |balance| and the energy scale it is compared with.
 struct BalanceTracker {
   double worst = 0; ///< max |E - E0 - W|

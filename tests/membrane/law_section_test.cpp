@@ -17,34 +17,21 @@ namespace {
 
 /// The catalog's GVBO polyurea (polyurea chapter, Table 5).
 materials::LawPtr polyurea() {
-  materials::MaterialSource src(test::testSources().library_path,
-                                test::testSources().catalog_path);
+  materials::MaterialSource src(test::testSources().library_path, test::testSources().catalog_path);
   return src.law("polyurea-gvbo");
 }
 
 /// A flat square of side 1 m (nx x nx squares) of polyurea, 1 mm, on the
 /// large-deflection model, explicit; @p extra appended.
 Model polyureaSquare(int nx, const std::string& extra) {
-  Model m = test::modelFromText("model = \"large_deflection\"\n[mesh]\nLx = 1.0\nnx = " +
-                                std::to_string(nx) +
-                                "\n[[section]]\nE = 278.0e6\nnu = 0.491\ndensity = 1100.0\n"
-                                "thickness = 1.0e-3\n[time]\nintegrator = \"explicit\"\n" +
-                                extra);
+  Model m = test::modelFromText(
+      "model = \"large_deflection\"\n[mesh]\nLx = 1.0\nnx = " + std::to_string(nx) +
+      "\n[[section]]\nE = 278.0e6\nnu = 0.491\ndensity = 1100.0\n"
+      "thickness = 1.0e-3\n[time]\nintegrator = \"explicit\"\n" +
+      extra);
   m.sections[0].law = polyurea();
   m.sections[0].material = "polyurea-gvbo";
   return m;
-}
-
-/// Every node moves with velocity (rx x, ry y, 0): a uniform in-plane stretch.
-Constraint uniformStretch(const Mesh& mesh, double rx, double ry) {
-  Constraint c;
-  c.name = "stretch";
-  for (int i = 0; i < mesh.numNodes(); ++i)
-    for (int k = 0; k < 3; ++k) {
-      c.dofs.push_back(3 * i + k);
-      c.amplitude.push_back(k == 0 ? rx * mesh.nodes[i].x() : k == 1 ? ry * mesh.nodes[i].y() : 0);
-    }
-  return c;
 }
 
 // One element (every node prescribed) under the equibiaxial stretch
@@ -66,7 +53,7 @@ TEST(LawSection, SingleElementMatchesDriveOnTheBiaxialStressPath) {
   const auto rows = materials::drive(*polyurea(), o);
   ASSERT_EQ(rows.size(), static_cast<size_t>(steps + 1));
   Model m = polyureaSquare(1, "dt = " + core::formatExact(dt) + "\nt_end = 1.0\n");
-  m.constraints = {uniformStretch(m.mesh, rate, rate)};
+  m.constraints = {test::uniformStretch(m.mesh, rate, rate)};
   Simulation sim(m);
   const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());
   double peak = 0;
@@ -106,7 +93,7 @@ TEST(LawSection, WrinkledElementCarriesTheLawsUniaxialStress) {
   const auto rows = materials::drive(*polyurea(), o);
   Model m = polyureaSquare(1, "dt = " + core::formatExact(dt) + "\nt_end = 1.0\n");
   m.sections[0].tension_only = true;
-  m.constraints = {uniformStretch(m.mesh, rate, -rate)};
+  m.constraints = {test::uniformStretch(m.mesh, rate, -rate)};
   Simulation sim(m);
   const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());
   double peak = 0;
@@ -137,7 +124,7 @@ TEST(LawSection, AtAVeryHighRateGvboHasItsInstantaneousModuli) {
   const double rate = 1e5, to = 0.01, dt = 1e-9, E0 = 278e6, nu0 = 0.491;
   const int steps = static_cast<int>(std::lround(to / rate / dt));
   Model g = polyureaSquare(1, "dt = 1.0e-9\nt_end = 1.0e-7\n");
-  g.constraints = {uniformStretch(g.mesh, rate, 0.0)};
+  g.constraints = {test::uniformStretch(g.mesh, rate, 0.0)};
   Simulation sim(g);
   const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());
   double m = 0;
@@ -204,8 +191,8 @@ TEST(LawSection, SlowlyPulledSheetFollowsTheLawsSlowCurve) {
     const auto& r = rows[next];
     const double force = sim.reactionSums()[1].x();
     const double expect = h0 * r.sigma[0] * (1 + r.eps[1]) * (1 + r.eps[2]);
-    const double slope = (rows[next].sigma[0] - rows[next - 1].sigma[0]) /
-                         (rows[next].t - rows[next - 1].t) * h0;
+    const double slope =
+        (rows[next].sigma[0] - rows[next - 1].sigma[0]) / (rows[next].t - rows[next - 1].t) * h0;
     EXPECT_NEAR(force, expect + slope * (t - r.t), 1e-2 * expect) << "t = " << t;
     next += 30;
   }

@@ -73,16 +73,8 @@ mode_velocity = 1.0
 // The right edge translates as one body in z (a rigid set), the left edge
 // is clamped, top and bottom free; the right edge's motion and the centre's.
 TEST(NewmarkSystem, NewmarkWithARigidSetEqualsCentralDifferences) {
-  expectSchemesAgree(R"([[fixed]]
-nodes = "left"
-[[rigid]]
-nodes = "right"
-components = "z"
-[[spring]]
-nodes = "right"
-components = "z"
-stiffness = 1.0e4
-[initial]
+  expectSchemesAgree("[[fixed]]\nnodes = \"left\"\n" + test::rigidOnSprings("right", 1.0e4) +
+                         R"([initial]
 mode = [1, 1]
 mode_velocity = 1.0
 )",

@@ -283,12 +283,7 @@ struct PanelRun {
 PanelRun runPanel(double safety) {
   std::string text = test::blastPanel(8, 0.02);
   text.replace(text.find("safety = 0.5"), 12, "safety = " + std::to_string(safety));
-  const Model model = test::modelFromText(text + R"(
-[[blast]]
-charge = 0.05
-position = [0.5, 0.5, -2.0]
-burst = "hemispherical"
-)");
+  const Model model = test::modelFromText(text + test::kPanelBlast);
   Simulation sim(model);
   EXPECT_FALSE(sim.structure().nonConservativeWrinkling());
   const auto& ld = dynamic_cast<const LargeDeflection&>(sim.structure());

@@ -75,14 +75,8 @@ profile = "pulse"
 duration = 2.0e-4
 [[drag]]
 cd = 1.5
-[[rigid]]
-nodes = "right"
-components = "z"
-[[spring]]
-nodes = "right"
-components = "z"
-stiffness = 1.0e4
-[[strike]]
+)" + test::rigidOnSprings("right", 1.0e4) +
+                           R"([[strike]]
 at = [0.5, 0.5]
 speed = 1.0
 [[spring]]

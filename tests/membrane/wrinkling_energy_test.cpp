@@ -158,12 +158,7 @@ TEST(WrinklingEnergy, BalanceClosesWithTheWrinklingDissipation) {
   std::string text = test::blastPanel(8, 0.02);
   text.replace(text.find("tension_only = true\n"), 20,
                "tension_only = true\nwrinkling = \"projection\"\n");
-  const Model model = test::modelFromText(text + R"(
-[[blast]]
-charge = 0.05
-position = [0.5, 0.5, -2.0]
-burst = "hemispherical"
-)");
+  const Model model = test::modelFromText(text + test::kPanelBlast);
   Simulation sim(model);
   ASSERT_TRUE(sim.structure().nonConservativeWrinkling());
   double worst = 0, scale = 0;
