@@ -41,9 +41,11 @@ GvboModuli gvboModuli(const GvboParameters& g, double J) {
   const double lambda0 = g.E0 * g.nu0 / ((1 + g.nu0) * (1 - 2 * g.nu0));
   const double G0 = g.E0 / (2 * (1 + g.nu0));
   // eq. (13), clamped from below (text after eq. (16))
-  const double Jp = std::pow(J, g.p);
+  // J^p as exp(p ln J): one logarithm serves both terms (pow would take its own)
+  const double lnJ = std::log(J);
+  const double Jp = std::exp(g.p * lnJ);
   const double lambda = std::max(lambda0, Jp * lambda0);
-  const double G = std::max(G0, Jp * (G0 - lambda0 * std::log(J)));
+  const double G = std::max(G0, Jp * (G0 - lambda0 * lnJ));
   // eq. (16)
   double E = G * (3 * lambda + 2 * G) / (lambda + G);
   const double nu = lambda / (2 * (lambda + G));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace lamina::materials {
 
@@ -29,6 +30,7 @@ const double kSqrt23 = std::sqrt(2.0 / 3.0);
 /// The scalar problem of one step: every quantity as a function of Gamma,
 /// with its derivative (chain rule written out per line).
 struct Scalars {
+  double Gamma;     // the overstress invariant they are evaluated at
   double c, dc;     // psi / E
   double phi, dphi; // dt / (E k)
   double k;         // viscosity
@@ -61,6 +63,7 @@ double negativePower(double x, double n) {
 Scalars evaluate(const StepConstants& sc, double Gamma) {
   const GvboParameters& p = sc.law->parameters();
   Scalars s;
+  s.Gamma = Gamma;
   const double ex = std::exp(-p.a3 * Gamma);
   const double psi = p.a1 + (p.a2 - p.a1) * ex;
   s.c = psi / sc.E;
@@ -89,43 +92,42 @@ Scalars evaluate(const StepConstants& sc, double Gamma) {
 }
 
 /// Root of r(Gamma) = 0 on [0, inf): r(0) <= 0 and r grows without bound.
-/// Safeguarded Newton: a Newton step leaving the bracket is replaced by bisection.
-double solveGamma(const StepConstants& sc, double guess, int& iterations) {
-  double lo = 0, hi = 0;
-  Scalars s0 = evaluate(sc, 0.0);
-  if (s0.normW == 0)
-    return 0;
-  // bracket: from the guess (the last step's Gamma: at a steady rate it is
-  // near the root, and one evaluation brackets it), else from the elastic
-  // overstress; grow until r > 0
-  hi = std::max(kSqrt23 * s0.normW / s0.D, 1e-300);
-  if (guess > 0 && std::isfinite(guess)) {
-    if (evaluate(sc, guess).r > 0)
-      hi = guess;
-    else
-      lo = hi = guess;
+/// Newton from @p guess (the last step's Gamma: at a steady rate it is near
+/// the root), safeguarded: the iterates keep a bracket [lo, hi] (hi infinite
+/// until a positive residual is seen), and a Newton step that leaves it is
+/// replaced by bisection, or by doubling while no upper end is known.
+/// @return the root and the scalars evaluated at it (the last iterate, whose
+/// Newton correction is below round-off of Gamma on the scale of k2 + Gamma)
+Scalars solveGamma(const StepConstants& sc, double guess, int& iterations) {
+  const GvboParameters& p = sc.law->parameters();
+  const double psi0 = p.a1 + (p.a2 - p.a1);            // psi(0), as evaluate() forms it
+  const Vector6 W_at_0 = sc.W0 - (psi0 / sc.E) * sc.h; // W(0): q = 0, so a = 0
+  if (contract(W_at_0, W_at_0) == 0) {
+    iterations = 0;
+    return evaluate(sc, 0.0);
   }
-  for (int i = 0; hi == lo || evaluate(sc, hi).r <= 0; ++i) {
-    LAMINA_CHECK(i < 400, "GVBO: cannot bracket the overstress (Gamma)");
-    lo = hi;
-    hi *= 2;
+  double lo = 0, hi = std::numeric_limits<double>::infinity();
+  double g = guess;
+  if (!(g > 0 && std::isfinite(g))) {
+    const Scalars s0 = evaluate(sc, 0.0); // the elastic overstress as a start
+    g = std::max(kSqrt23 * s0.normW / s0.D, 1e-300);
   }
-  double g = (guess > lo && guess < hi) ? guess : hi;
-  const double scale = sc.k2b + hi;
-  for (iterations = 0; iterations < 200; ++iterations) {
+  for (iterations = 0; iterations < 400; ++iterations) {
     const Scalars s = evaluate(sc, g);
     if (s.r > 0)
       hi = g;
     else
       lo = g;
-    double next = s.dr > 0 ? g - s.r / s.dr : 0.5 * (lo + hi);
+    // converged: the Newton correction is below round-off of Gamma on the
+    // scale of k2 and Gamma (checked before the bracket, which a root met
+    // exactly would leave), or the bracket closed on the root
+    const double scale = sc.k2b + g;
+    if ((s.dr > 0 && std::abs(s.r) <= 1e-14 * scale * s.dr) || hi - lo <= 1e-14 * scale)
+      return s;
+    double next = s.dr > 0 ? g - s.r / s.dr : lo + 0.5 * (hi - lo);
     if (!(next > lo && next < hi))
-      next = 0.5 * (lo + hi);
-    const double step = std::abs(next - g);
+      next = std::isfinite(hi) ? lo + 0.5 * (hi - lo) : 2 * std::max(g, lo);
     g = next;
-    // converged to round-off of Gamma on the scale of k2 and the bracket
-    if (step <= 1e-14 * scale || hi - lo <= 1e-14 * scale)
-      return g;
   }
   throw Error("GVBO: the overstress iteration did not converge");
 }
@@ -211,8 +213,8 @@ void GvboLaw::updateWithInfo(const PointStep& step, const double* state_n, doubl
   sc.V = s_n - f_n + sc.h;
 
   int iterations = 0;
-  const double Gamma = solveGamma(sc, state_n[GvboState::kGamma], iterations);
-  const Scalars s = evaluate(sc, Gamma);
+  const Scalars s = solveGamma(sc, state_n[GvboState::kGamma], iterations);
+  const double Gamma = s.Gamma;
   const Vector6 x = s.W / s.D;
   const Vector6 dev_s = s_n + sc.h - 3 * m.G * s.phi * x;
   const Vector6 f = f_n + sc.Etb * s.phi * x;

@@ -4,8 +4,46 @@
 
 namespace lamina::materials {
 
+namespace {
+
+/// @return X^-T = cof(X) / det X: its columns are the cross products of X's
+/// columns (the cofactor matrix), @p det receives det X
+Eigen::Matrix3d inverseTranspose(const Eigen::Matrix3d& X, double& det) {
+  Eigen::Matrix3d C;
+  C.col(0) = X.col(1).cross(X.col(2));
+  C.col(1) = X.col(2).cross(X.col(0));
+  C.col(2) = X.col(0).cross(X.col(1));
+  det = X.col(0).dot(C.col(0));
+  return C / det;
+}
+
+} // namespace
+
 Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& F) {
   LAMINA_CHECK(F.determinant() > 0, "deformation gradient with det F <= 0");
+  // Newton's iteration for the orthogonal polar factor (Higham 1986),
+  // X <- (g X + X^-T / g) / 2 with the Frobenius-norm scaling g while far
+  // from converged: quadratic near R, a handful of iterations for the
+  // stretches of a step (every X keeps det > 0, so the limit is a rotation).
+  Eigen::Matrix3d X = F;
+  for (int it = 0; it < 40; ++it) {
+    double det = 0;
+    const Eigen::Matrix3d Xit = inverseTranspose(X, det);
+    const double change = (Xit - X).norm();
+    double g = 1;
+    if (change > 1e-2) // scaling only far from R: near it, it would only add round-off
+      g = std::sqrt(Xit.norm() / X.norm());
+    const Eigen::Matrix3d next = 0.5 * (g * X + Xit / g);
+    const double step = (next - X).norm();
+    X = next;
+    // the correction is quadratic in the distance to R: once it is below
+    // 1e-9, the next one lies below round-off
+    if (step <= 1e-9) {
+      X = 0.5 * (X + inverseTranspose(X, det));
+      return X;
+    }
+  }
+  // not converged (a stretch far beyond any step's): the SVD
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
   return svd.matrixU() * svd.matrixV().transpose();
 }

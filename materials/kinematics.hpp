@@ -19,7 +19,8 @@
 
 namespace lamina::materials {
 
-/// @return the rotation R of F = R U (det F > 0), by the SVD of F
+/// @return the rotation R of F = R U (det F > 0), by Newton's iteration
+/// for the polar factor (the SVD when it does not converge)
 Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& F);
 
 /// One step F_n -> F in the rotation-free frame.

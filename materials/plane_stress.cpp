@@ -15,10 +15,14 @@ namespace {
 constexpr std::array<int, 3> kInPlane{0, 1, 3}; // xx, yy, xy in lamina order
 constexpr std::array<int, 3> kOut{2, 4, 5};     // zz, yz, xz
 
-/// Matrices of at most 6 columns, on the stack.
-using MatB = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>;
-using MatK = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-using VecZ = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 6, 1>;
+/// Fixed-size matrices of the N = 3 + n_free unknowns (planeStressUpdate
+/// dispatches on N once, so every product and LU below is unrolled).
+template <int N>
+using MatB = Eigen::Matrix<double, 6, N>;
+template <int N>
+using MatK = Eigen::Matrix<double, N, N>;
+template <int N>
+using VecZ = Eigen::Matrix<double, N, 1>;
 
 /// Largest |deps_zz| of one Newton iterate (a thickness ratio of 7 in one step).
 constexpr double kMaxThicknessIncrement = 1.5;
@@ -32,11 +36,12 @@ Vector6 placeInPlane(const Eigen::Vector3d& v) {
 }
 
 /// B of the file comment: zz, yz, xz unit columns, then the free directions.
-MatB constraintBasis(const PlaneStressStep& s) {
-  MatB B = MatB::Zero(6, 3 + s.n_free);
+template <int N>
+MatB<N> constraintBasis(const PlaneStressStep& s) {
+  MatB<N> B = MatB<N>::Zero();
   for (std::size_t i = 0; i < 3; ++i)
     B(kOut[i], static_cast<Eigen::Index>(i)) = 1;
-  for (int k = 0; k < s.n_free; ++k)
+  for (int k = 0; k < N - 3; ++k) // N - 3 = s.n_free
     B.col(3 + k) = placeInPlane(s.free_dir[static_cast<std::size_t>(k)]);
   return B;
 }
@@ -67,8 +72,9 @@ double thicknessStretch(double lambda3_n, double deps_zz) {
 }
 
 /// The law's step at the unknowns @p z.
-PointStep lawStep(const PlaneStressStep& s, const Vector6& deps_imposed, const MatB& B,
-                  const VecZ& z) {
+template <int N>
+PointStep lawStep(const PlaneStressStep& s, const Vector6& deps_imposed, const MatB<N>& B,
+                  const VecZ<N>& z) {
   PointStep ps;
   ps.eps_n = s.eps_n;
   ps.eps = s.eps_n + deps_imposed + B * z;
@@ -79,13 +85,13 @@ PointStep lawStep(const PlaneStressStep& s, const Vector6& deps_imposed, const M
 }
 
 /// d sigma_p / d eps_p = T_pp - E_p^T T B (B^T T B)^-1 B^T T E_p.
-Eigen::Matrix3d condensedTangent(const Matrix6& T, const MatB& B) {
+template <int N>
+Eigen::Matrix3d condensedTangent(const Matrix6& T, const MatB<N>& B) {
   Eigen::Matrix<double, 6, 3> TE;
   for (std::size_t j = 0; j < 3; ++j)
     TE.col(static_cast<Eigen::Index>(j)) = T.col(kInPlane[j]);
-  const MatK K = B.transpose() * T * B;
-  const Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 6, 3> X =
-      K.partialPivLu().solve(B.transpose() * TE);
+  const MatK<N> K = B.transpose() * T * B;
+  const Eigen::Matrix<double, N, 3> X = K.partialPivLu().solve(B.transpose() * TE);
   const Eigen::Matrix<double, 6, 3> full = TE - T * B * X;
   Eigen::Matrix3d out;
   for (std::size_t i = 0; i < 3; ++i)
@@ -94,27 +100,30 @@ Eigen::Matrix3d condensedTangent(const Matrix6& T, const MatB& B) {
 }
 
 /// Fills eps, lambda3, amplitudes of @p r from the unknowns @p z.
-void storeUnknowns(const PlaneStressStep& s, const PointStep& ps, const VecZ& z,
+template <int N>
+void storeUnknowns(const PlaneStressStep& s, const PointStep& ps, const VecZ<N>& z,
                    PlaneStressResult& r) {
   r.eps = ps.eps;
   r.lambda3 = thicknessStretch(s.lambda3_n, z[0]);
-  for (int k = 0; k < s.n_free; ++k)
+  for (int k = 0; k < N - 3; ++k) // N - 3 = s.n_free
     r.amplitude[static_cast<std::size_t>(k)] = z[3 + k];
 }
 
 /// max |B^T sigma| with the free rows divided by |d_k|.
-double constrainedStress(const PlaneStressStep& s, const MatB& B, const Vector6& sigma) {
-  VecZ r = B.transpose() * sigma;
-  for (int k = 0; k < s.n_free; ++k)
+template <int N>
+double constrainedStress(const PlaneStressStep& s, const MatB<N>& B, const Vector6& sigma) {
+  VecZ<N> r = B.transpose() * sigma;
+  for (int k = 0; k < N - 3; ++k) // N - 3 = s.n_free
     r[3 + k] /= s.free_dir[static_cast<std::size_t>(k)].norm();
   return r.cwiseAbs().maxCoeff();
 }
 
+template <int N>
 PlaneStressResult linearStep(const ConstitutiveLaw& law, const PlaneStressStep& s,
-                             const Vector6& deps_imposed, const MatB& B, bool want_tangent) {
+                             const Vector6& deps_imposed, const MatB<N>& B, bool want_tangent) {
   const Matrix6 C = law.elasticStiffness().matrix();
-  const MatK K = B.transpose() * C * B;
-  const VecZ z = -K.partialPivLu().solve(B.transpose() * (C * (s.eps_n + deps_imposed)));
+  const MatK<N> K = B.transpose() * C * B;
+  const VecZ<N> z = -K.partialPivLu().solve(B.transpose() * (C * (s.eps_n + deps_imposed)));
   const PointStep ps = lawStep(s, deps_imposed, B, z);
   PlaneStressResult r;
   storeUnknowns(s, ps, z, r);
@@ -126,15 +135,12 @@ PlaneStressResult linearStep(const ConstitutiveLaw& law, const PlaneStressStep& 
   return r;
 }
 
-} // namespace
-
-PlaneStressResult planeStressUpdate(const ConstitutiveLaw& law, const PlaneStressStep& s,
-                                    const double* state_n, double* state, bool want_tangent,
-                                    double tolerance) {
-  checkStep(s);
-  LAMINA_CHECK(tolerance > 0 && std::isfinite(tolerance),
-               "plane stress: the tolerance must be positive, got ", tolerance);
-  const MatB B = constraintBasis(s);
+/// planeStressUpdate() with N = 3 + s.n_free unknowns (checked by the caller).
+template <int N>
+PlaneStressResult update(const ConstitutiveLaw& law, const PlaneStressStep& s,
+                         const double* state_n, double* state, bool want_tangent,
+                         double tolerance) {
+  const MatB<N> B = constraintBasis<N>(s);
   const Vector6 deps_imposed = placeInPlane(s.deps_p);
   if (law.isLinear())
     return linearStep(law, s, deps_imposed, B, want_tangent);
@@ -147,7 +153,7 @@ PlaneStressResult planeStressUpdate(const ConstitutiveLaw& law, const PlaneStres
   }
   const Matrix6 C0 = law.elasticStiffness(s.J2_n * s.lambda3_n).matrix();
   const double maxC0 = C0.cwiseAbs().maxCoeff();
-  VecZ z = -(B.transpose() * C0 * B).partialPivLu().solve(B.transpose() * (C0 * deps_imposed));
+  VecZ<N> z = -(B.transpose() * C0 * B).partialPivLu().solve(B.transpose() * (C0 * deps_imposed));
   z[0] = std::clamp(z[0], -kMaxThicknessIncrement, kMaxThicknessIncrement);
 
   PlaneStressResult r;
@@ -170,7 +176,7 @@ PlaneStressResult planeStressUpdate(const ConstitutiveLaw& law, const PlaneStres
       throw Error(detail::concat("plane stress: the out-of-plane stress did not vanish: residual ",
                                  r.residual, " Pa after ", it, " iterations (tolerance ", tolerance,
                                  " x ", scale, " Pa)"));
-    VecZ dz = (B.transpose() * T * B).partialPivLu().solve(B.transpose() * r.sigma);
+    VecZ<N> dz = (B.transpose() * T * B).partialPivLu().solve(B.transpose() * r.sigma);
     for (int halve = 0; std::abs(z[0] - dz[0]) > kMaxThicknessIncrement && halve < 60; ++halve)
       dz *= 0.5;
     z -= dz;
@@ -178,6 +184,26 @@ PlaneStressResult planeStressUpdate(const ConstitutiveLaw& law, const PlaneStres
   if (want_tangent)
     r.tangent = condensedTangent(T, B);
   return r;
+}
+
+} // namespace
+
+PlaneStressResult planeStressUpdate(const ConstitutiveLaw& law, const PlaneStressStep& s,
+                                    const double* state_n, double* state, bool want_tangent,
+                                    double tolerance) {
+  checkStep(s);
+  LAMINA_CHECK(tolerance > 0 && std::isfinite(tolerance),
+               "plane stress: the tolerance must be positive, got ", tolerance);
+  switch (s.n_free) {
+  case 0:
+    return update<3>(law, s, state_n, state, want_tangent, tolerance);
+  case 1:
+    return update<4>(law, s, state_n, state, want_tangent, tolerance);
+  case 2:
+    return update<5>(law, s, state_n, state, want_tangent, tolerance);
+  default:
+    return update<6>(law, s, state_n, state, want_tangent, tolerance);
+  }
 }
 
 } // namespace lamina::materials

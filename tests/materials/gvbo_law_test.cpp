@@ -16,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -382,4 +383,41 @@ TEST(GvboLaw, RigidRotationKeepsInvariants) {
   EXPECT_NEAR(S.squaredNorm(), S0.squaredNorm(), 1e-10 * scale * scale);
   EXPECT_NEAR(S.determinant(), S0.determinant(), 1e-10 * scale * scale * scale);
   EXPECT_LE((S - Q * S0 * Q.transpose()).norm(), 1e-10 * scale);
+}
+
+// The overstress equation is solved by Newton from the last step's Gamma
+// (gvbo_law.cpp): along a smooth history that start is within a few percent
+// of the root, so quadratic convergence reaches round-off (1e-14 of
+// k2 + Gamma) in at most four corrections: 3e-2 -> 1e-3 -> 1e-6 -> 1e-12 ->
+// 1e-24. Explicit membrane steps (dt 1e-8 s: r nearly linear, Newton lands
+// on the root to the last bit, where a bracket test alone would bisect away
+// from it) and implicit-size steps (1e-5 s), loading at 1e3 /s in tension
+// and shear.
+TEST(GvboLaw, OverstressNewtonConvergesInAFewCorrections) {
+  for (const mat::GvboParameters& p : {table5(), withShapeAndIsotropic()}) {
+    const mat::GvboLaw law(p);
+    for (const double dt : {1e-8, 1e-5}) {
+      std::vector<double> state(GvboState::kSize), next(GvboState::kSize);
+      law.initState(state.data());
+      Vector6 dir;
+      dir << 1.0, -0.45, -0.45, 0.6, 0.0, 0.2;
+      Vector6 eps = Vector6::Zero();
+      int worst = 0;
+      const int steps = dt < 1e-6 ? 3000 : 300;
+      for (int n = 1; n <= steps; ++n) {
+        const Vector6 eps_new = dir * (1e3 * dt * n);
+        const mat::PointStep s{eps, eps_new, 1 + eps.head<3>().sum(), 1 + eps_new.head<3>().sum(),
+                               dt};
+        Vector6 sigma;
+        mat::GvboStepInfo info;
+        law.updateWithInfo(s, state.data(), next.data(), sigma, nullptr, &info);
+        if (n > 2) // the first steps start from Gamma = 0 (the elastic estimate)
+          worst = std::max(worst, info.iterations);
+        state.swap(next);
+        eps = eps_new;
+      }
+      EXPECT_GT(state[GvboState::kGamma], 1e4) << "dt " << dt; // the law flows
+      EXPECT_LE(worst, 4) << "dt " << dt << ", a3 " << p.a3;
+    }
+  }
 }
