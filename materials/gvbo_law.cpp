@@ -1,6 +1,7 @@
 #include "materials/gvbo_law.hpp"
 
 #include "core/error.hpp"
+#include "materials/plane_stress.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -132,6 +133,64 @@ Scalars solveGamma(const StepConstants& sc, double guess, int& iterations) {
   throw Error("GVBO: the overstress iteration did not converge");
 }
 
+/// Everything of one step that does not depend on Gamma: the moduli at
+/// J_{n+1}, the step's constants, the increment's trace and the state at t_n.
+struct Step {
+  GvboModuli m;
+  double K = 0;   // bulk modulus at J_{n+1}
+  double dth = 0; // volumetric strain increment
+  double p_n = 0; // mean stress at t_n
+  Vector6 s_n, f_n;
+  StepConstants sc;
+};
+
+/// @param de the strain increment, tensor components (shear halved)
+Step prepare(const GvboLaw& law, double J, double dt, const Vector6& de, const double* state_n) {
+  const GvboParameters& p = law.parameters();
+  Step st;
+  st.m = gvboModuli(p, J);
+  st.K = st.m.lambda + 2 * st.m.G / 3;
+  st.sc.law = &law;
+  st.sc.E = st.m.E;
+  st.sc.G = st.m.G;
+  st.sc.dt = dt;
+  st.sc.A_n = state_n[GvboState::kA];
+  st.sc.Etb = 2.0 / 3.0 * p.Et / (1 - p.Et / st.m.E);
+  st.sc.k2b = p.k2 + p.k3 * (st.m.E - p.E0) / (p.Em - p.E0);
+  st.dth = de[0] + de[1] + de[2];
+  const Vector6 sig_n = Eigen::Map<const Vector6>(state_n + GvboState::kSigma);
+  const Vector6 g_n = Eigen::Map<const Vector6>(state_n + GvboState::kG);
+  st.f_n = Eigen::Map<const Vector6>(state_n + GvboState::kF);
+  st.p_n = (sig_n[0] + sig_n[1] + sig_n[2]) / 3;
+  st.s_n = deviator(sig_n);
+  st.sc.h = 2 * st.m.G * deviator(de);
+  st.sc.W0 = st.s_n - g_n + st.sc.h;
+  st.sc.V = st.s_n - st.f_n + st.sc.h;
+  return st;
+}
+
+/// The stress at t_{n+1} of the step @p st at the scalars @p s.
+struct StressAt {
+  Vector6 dev;   // its deviator s = s_n + h - 3 G phi x (eq. 3)
+  Vector6 sigma; // s + p 1, p = p_n + K dth
+  StressAt(const Step& st, const Scalars& s)
+      : dev(st.s_n + st.sc.h - 3 * st.m.G * s.phi * (s.W / s.D)), sigma(dev) {
+    sigma.head<3>().array() += st.p_n + st.K * st.dth;
+  }
+};
+
+/// Writes the state at t_{n+1} of the step @p st at the scalars @p s.
+void store(const Step& st, const Scalars& s, const StressAt& at, double* state) {
+  const Vector6 x = s.W / s.D;
+  const Vector6 f = st.f_n + st.sc.Etb * s.phi * x;
+  const Vector6 g = at.dev - x;
+  Eigen::Map<Vector6>(state + GvboState::kSigma) = at.sigma;
+  Eigen::Map<Vector6>(state + GvboState::kG) = g;
+  Eigen::Map<Vector6>(state + GvboState::kF) = f;
+  state[GvboState::kA] = s.A;
+  state[GvboState::kGamma] = s.Gamma;
+}
+
 } // namespace
 
 GvboLaw::GvboLaw(const GvboParameters& p) : p_(p) {
@@ -193,42 +252,20 @@ void GvboLaw::update(const PointStep& step, const double* state_n, double* state
 void GvboLaw::updateWithInfo(const PointStep& step, const double* state_n, double* state,
                              Vector6& sigma, Matrix6* tangent, GvboStepInfo* info) const {
   LAMINA_CHECK(step.dt >= 0, "GVBO: negative time step");
-  const GvboModuli m = gvboModuli(p_, step.J);
-  const double K = m.lambda + 2 * m.G / 3;
-  StepConstants sc{this, m.E, m.G, 0, 0, step.dt, state_n[GvboState::kA], {}, {}, {}};
-  sc.Etb = 2.0 / 3.0 * p_.Et / (1 - p_.Et / m.E);
-  sc.k2b = p_.k2 + p_.k3 * (m.E - p_.E0) / (p_.Em - p_.E0);
   // strain increment as a tensor (engineering shear -> tensor shear)
   Vector6 de = step.eps - step.eps_n;
   de.tail<3>() *= 0.5;
-  const double dth = de[0] + de[1] + de[2];
-  const Vector6 dev_de = deviator(de);
-  const Vector6 sig_n = Eigen::Map<const Vector6>(state_n + GvboState::kSigma);
-  const Vector6 g_n = Eigen::Map<const Vector6>(state_n + GvboState::kG);
-  const Vector6 f_n = Eigen::Map<const Vector6>(state_n + GvboState::kF);
-  const double p_n = (sig_n[0] + sig_n[1] + sig_n[2]) / 3;
-  const Vector6 s_n = deviator(sig_n);
-  sc.h = 2 * m.G * dev_de;
-  sc.W0 = s_n - g_n + sc.h;
-  sc.V = s_n - f_n + sc.h;
-
+  const Step st = prepare(*this, step.J, step.dt, de, state_n);
+  const GvboModuli& m = st.m;
+  const double K = st.K;
   int iterations = 0;
-  const Scalars s = solveGamma(sc, state_n[GvboState::kGamma], iterations);
-  const double Gamma = s.Gamma;
+  const Scalars s = solveGamma(st.sc, state_n[GvboState::kGamma], iterations);
+  const StressAt at(st, s);
+  sigma = at.sigma;
+  store(st, s, at, state);
   const Vector6 x = s.W / s.D;
-  const Vector6 dev_s = s_n + sc.h - 3 * m.G * s.phi * x;
-  const Vector6 f = f_n + sc.Etb * s.phi * x;
-  const Vector6 g = dev_s - x;
-  const double p = p_n + K * dth;
-  sigma = dev_s;
-  sigma.head<3>().array() += p;
-  Eigen::Map<Vector6>(state + GvboState::kSigma) = sigma;
-  Eigen::Map<Vector6>(state + GvboState::kG) = g;
-  Eigen::Map<Vector6>(state + GvboState::kF) = f;
-  state[GvboState::kA] = s.A;
-  state[GvboState::kGamma] = Gamma;
   if (info)
-    *info = {Gamma, s.k, s.c * m.E, m.E, iterations};
+    *info = {s.Gamma, s.k, s.c * m.E, m.E, iterations};
   if (!tangent)
     return;
   // d sigma / d eps (engineering): K 1x1 + (2G - 3G phi alpha) M + b n^T,
@@ -249,6 +286,82 @@ void GvboLaw::updateWithInfo(const PointStep& step, const double* state_n, doubl
     const Vector6 b = -3 * m.G * (s.dphi * x + s.phi * y) * dGamma;
     T += b * n.transpose();
   }
+}
+
+bool GvboLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n, double* state,
+                              double tolerance, PlaneStressResult& out) const {
+  // Isotropy keeps the transverse shears of state and strain zero when they
+  // start so (nothing couples them to the in-plane and normal components):
+  // then sigma_yz = sigma_xz = 0 hold exactly and one normal strain is left.
+  if (ps.n_free != 0 || !(ps.dt >= 0) || ps.eps_n[4] != 0 || ps.eps_n[5] != 0)
+    return false;
+  for (const int at : {GvboState::kSigma, GvboState::kG, GvboState::kF})
+    if (state_n[at + 4] != 0 || state_n[at + 5] != 0)
+      return false;
+  const GvboModuli m_n = gvboModuli(p_, ps.J2_n * ps.lambda3_n);
+  // the elastic predictor of planeStressUpdate (isotropic: lambda (dxx + dyy
+  // + z) + 2 G z = 0) and the same stress scale: max|C0| = lambda + 2 G
+  double z = std::clamp(-m_n.lambda * (ps.deps_p[0] + ps.deps_p[1]) / (m_n.lambda + 2 * m_n.G),
+                        -kMaxThicknessIncrement, kMaxThicknessIncrement);
+  const double maxC0 = m_n.lambda + 2 * m_n.G;
+  double Gamma = state_n[GvboState::kGamma];
+  const bool guessed = Gamma > 0 && std::isfinite(Gamma);
+  Vector6 de;
+  de << ps.deps_p[0], ps.deps_p[1], 0, 0.5 * ps.deps_p[2], 0, 0;
+  // Newton on (z, Gamma) for sigma_zz = 0 and the overstress equation r = 0,
+  // the moduli at J(z) of each iterate; the Jacobian at fixed moduli (their
+  // change with J within a step is of the order of the step's increment).
+  for (int it = 0; it <= kPlaneStressMaxIterations; ++it) {
+    de[2] = z;
+    const Step st =
+        prepare(*this, ps.J2 * midpointThicknessStretch(ps.lambda3_n, z), ps.dt, de, state_n);
+    if (it == 0 && !guessed) { // the law's own start: the elastic overstress
+      const Scalars s0 = evaluate(st.sc, 0.0);
+      Gamma = std::max(kSqrt23 * s0.normW / s0.D, 1e-300);
+    }
+    const Scalars s = evaluate(st.sc, Gamma);
+    const StressAt at(st, s);
+    if (!at.sigma.allFinite() || !std::isfinite(s.r) || !(s.dr > 0))
+      return false;
+    Vector6 eps = ps.eps_n;
+    eps += Vector6(ps.deps_p[0], ps.deps_p[1], z, ps.deps_p[2], 0, 0);
+    const double scale =
+        std::max(at.sigma.cwiseAbs().maxCoeff(),
+                 maxC0 * std::max(ps.eps_n.cwiseAbs().maxCoeff(), eps.cwiseAbs().maxCoeff()));
+    const double residual = std::abs(at.sigma[2]);
+    // converged as planeStressUpdate's Newton and as the law's own update
+    // (solveGamma) would be
+    if (residual <= tolerance * scale && std::abs(s.r) <= 1e-14 * (st.sc.k2b + Gamma) * s.dr) {
+      store(st, s, at, state);
+      out = PlaneStressResult{};
+      out.eps = eps;
+      out.lambda3 = midpointThicknessStretch(ps.lambda3_n, z);
+      out.sigma = at.sigma;
+      out.iterations = it;
+      out.residual = residual;
+      return true;
+    }
+    // Jacobian: dW/dz = (1 - c + a) 2G dev(e_zz) and W deviatoric, so
+    // W : dW/dz = (1 - c + a) 2G W_zz
+    const double G = st.m.G, w = (1 - s.c + s.a) * 2 * G;
+    const double xzz = s.W[2] / s.D;
+    const double a11 = st.K + 4.0 / 3.0 * G - 3 * G * s.phi * w * (2.0 / 3.0) / s.D;
+    const double a12 = -3 * G * (s.dphi * xzz + s.phi * (s.dW[2] - xzz * s.dD) / s.D);
+    const double a21 = s.normW > 0 ? -kSqrt23 * w * s.W[2] / s.normW : 0.0;
+    const double a22 = s.dr;
+    const double det = a11 * a22 - a12 * a21;
+    if (!(std::abs(det) > 0) || !std::isfinite(det))
+      return false;
+    double dz = (a22 * at.sigma[2] - a12 * s.r) / det;
+    const double dGamma = (a11 * s.r - a21 * at.sigma[2]) / det;
+    for (int halve = 0; std::abs(z - dz) > kMaxThicknessIncrement && halve < 60; ++halve)
+      dz *= 0.5;
+    z -= dz;
+    Gamma -= dGamma;
+    if (!(Gamma >= 0) || !std::isfinite(z)) // leave it to the safeguarded iterations
+      return false;
+  }
+  return false;
 }
 
 } // namespace lamina::materials

@@ -70,6 +70,15 @@ public:
   Vector6 elasticStrain(const Vector6& sigma, double J) const override;
   void update(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
               Matrix6* tangent) const override;
+  /// Membrane plane stress (plane_stress.hpp) with no free direction and no
+  /// transverse shear in the state or the strain (what a membrane's isotropic
+  /// GVBO element holds): one Newton on the normal strain increment and the
+  /// overstress invariant together, the moduli at J of each iterate,
+  /// converged when sigma_zz meets planeStressUpdate's test and Gamma the
+  /// test of update(). Returns false (nothing written) otherwise, or when an
+  /// iterate leaves Gamma >= 0, and planeStressUpdate() runs its Newton.
+  bool planeStressStep(const PlaneStressStep& step, const double* state_n, double* state,
+                       double tolerance, PlaneStressResult& out) const override;
   /// As update(), also reporting Gamma, k, psi, E and iterations in @p info.
   void updateWithInfo(const PointStep& step, const double* state_n, double* state, Vector6& sigma,
                       Matrix6* tangent, GvboStepInfo* info) const;

@@ -14,7 +14,7 @@ Eigen::Matrix3d inverseTranspose(const Eigen::Matrix3d& X, double& det) {
   C.col(1) = X.col(2).cross(X.col(0));
   C.col(2) = X.col(0).cross(X.col(1));
   det = X.col(0).dot(C.col(0));
-  return C / det;
+  return C * (1 / det);
 }
 
 } // namespace
@@ -29,16 +29,16 @@ Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& F) {
   for (int it = 0; it < 40; ++it) {
     double det = 0;
     const Eigen::Matrix3d Xit = inverseTranspose(X, det);
-    const double change = (Xit - X).norm();
     double g = 1;
-    if (change > 1e-2) // scaling only far from R: near it, it would only add round-off
+    if ((Xit - X).squaredNorm() >
+        1e-4) // scaling only far from R: near it, it would only add round-off
       g = std::sqrt(Xit.norm() / X.norm());
     const Eigen::Matrix3d next = 0.5 * (g * X + Xit / g);
-    const double step = (next - X).norm();
+    const double step2 = (next - X).squaredNorm();
     X = next;
     // the correction is quadratic in the distance to R: once it is below
     // 1e-9, the next one lies below round-off
-    if (step <= 1e-9) {
+    if (step2 <= 1e-18) {
       X = 0.5 * (X + inverseTranspose(X, det));
       return X;
     }

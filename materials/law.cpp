@@ -30,6 +30,11 @@ Vector6 ConstitutiveLaw::elasticStrain(const Vector6& sigma, double J) const {
   return elasticStiffness(J).matrix().ldlt().solve(sigma);
 }
 
+bool ConstitutiveLaw::planeStressStep(const PlaneStressStep&, const double*, double*, double,
+                                      PlaneStressResult&) const {
+  return false;
+}
+
 LinearElasticLaw::LinearElasticLaw(LawKind kind, const Stiffness& C) : kind_(kind), C_(C) {
   LAMINA_CHECK(kind != LawKind::Gvbo && kind != LawKind::ReducedOrder && kind != LawKind::Fabric,
                "the ", toString(kind), " law is not linear elasticity");

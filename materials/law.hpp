@@ -75,6 +75,9 @@ struct PointStep {
   double dt = 0;                   ///< t_{n+1} - t_n (s), >= 0
 };
 
+struct PlaneStressStep;
+struct PlaneStressResult;
+
 /// A constitutive law with internal state (immutable; state lives outside).
 class ConstitutiveLaw {
 public:
@@ -117,6 +120,14 @@ public:
   /// Default: an LDL^T solve with elasticStiffness(J); a law with a closed
   /// form (isotropic GVBO) overrides it.
   virtual Vector6 elasticStrain(const Vector6& sigma, double J) const;
+  /// The law's own membrane plane-stress step without tangent, where it has
+  /// one for @p step (plane_stress.hpp states the step and the tolerance;
+  /// the isotropic GVBO law solves its two scalar unknowns at once): fills
+  /// @p out, writes @p state (may alias @p state_n) and returns true, or
+  /// returns false without writing anything, and planeStressUpdate() runs
+  /// its Newton on the law's update. Default: false.
+  virtual bool planeStressStep(const PlaneStressStep& step, const double* state_n, double* state,
+                               double tolerance, PlaneStressResult& out) const;
 };
 
 /// Shared handle to an immutable law.

@@ -24,9 +24,6 @@ using MatK = Eigen::Matrix<double, N, N>;
 template <int N>
 using VecZ = Eigen::Matrix<double, N, 1>;
 
-/// Largest |deps_zz| of one Newton iterate (a thickness ratio of 7 in one step).
-constexpr double kMaxThicknessIncrement = 1.5;
-
 /// @return E_p v: [xx, yy, xy] placed in lamina order
 Vector6 placeInPlane(const Eigen::Vector3d& v) {
   Vector6 out = Vector6::Zero();
@@ -66,11 +63,6 @@ void checkStep(const PlaneStressStep& s) {
   LAMINA_CHECK(gram > 1e-12, "plane stress: the free directions are linearly dependent");
 }
 
-/// @return lambda3 at t_{n+1} from the midpoint rule
-double thicknessStretch(double lambda3_n, double deps_zz) {
-  return lambda3_n * (2 + deps_zz) / (2 - deps_zz);
-}
-
 /// The law's step at the unknowns @p z.
 template <int N>
 PointStep lawStep(const PlaneStressStep& s, const Vector6& deps_imposed, const MatB<N>& B,
@@ -79,7 +71,7 @@ PointStep lawStep(const PlaneStressStep& s, const Vector6& deps_imposed, const M
   ps.eps_n = s.eps_n;
   ps.eps = s.eps_n + deps_imposed + B * z;
   ps.J_n = s.J2_n * s.lambda3_n;
-  ps.J = s.J2 * thicknessStretch(s.lambda3_n, z[0]);
+  ps.J = s.J2 * midpointThicknessStretch(s.lambda3_n, z[0]);
   ps.dt = s.dt;
   return ps;
 }
@@ -104,7 +96,7 @@ template <int N>
 void storeUnknowns(const PlaneStressStep& s, const PointStep& ps, const VecZ<N>& z,
                    PlaneStressResult& r) {
   r.eps = ps.eps;
-  r.lambda3 = thicknessStretch(s.lambda3_n, z[0]);
+  r.lambda3 = midpointThicknessStretch(s.lambda3_n, z[0]);
   for (int k = 0; k < N - 3; ++k) // N - 3 = s.n_free
     r.amplitude[static_cast<std::size_t>(k)] = z[3 + k];
 }
@@ -144,6 +136,9 @@ PlaneStressResult update(const ConstitutiveLaw& law, const PlaneStressStep& s,
   const Vector6 deps_imposed = placeInPlane(s.deps_p);
   if (law.isLinear())
     return linearStep(law, s, deps_imposed, B, want_tangent);
+  PlaneStressResult own;
+  if (!want_tangent && law.planeStressStep(s, state_n, state, tolerance, own))
+    return own;
 
   // the law reads state_n at every iterate: keep a copy when it is overwritten
   std::vector<double> copy;

@@ -57,6 +57,14 @@
 /// is refused with lamina::Error giving the residual (the caller adds the
 /// element and the time).
 ///
+/// **A law's own step.** When no tangent is asked, a law may take the step
+/// itself (ConstitutiveLaw::planeStressStep), to the same test on the
+/// constrained stresses; the isotropic GVBO law does so with no free
+/// direction and no transverse shear (one Newton on deps_zz and its
+/// overstress invariant together: a third of the work of a Newton on its
+/// update, which solves the overstress equation anew at every iterate). A
+/// law that declines gets the Newton above.
+///
 /// **Linear laws** (law.isLinear()): closed form, no iteration, sigma = C eps
 /// with z = -(B^T C B)^-1 B^T C (eps_n + E_p deps_p) (the constraints hold at
 /// t_{n+1} whatever eps_n holds).
@@ -83,6 +91,14 @@
 #include <array>
 
 namespace lamina::materials {
+
+/// Largest |deps_zz| of one Newton iterate (a thickness ratio of 7 in one step).
+inline constexpr double kMaxThicknessIncrement = 1.5;
+
+/// @return lambda3 at t_{n+1} from the midpoint rule (file comment)
+inline double midpointThicknessStretch(double lambda3_n, double deps_zz) {
+  return lambda3_n * (2 + deps_zz) / (2 - deps_zz);
+}
 
 /// Default tolerance of planeStressUpdate (see the file comment).
 inline constexpr double kPlaneStressTolerance = 1e-12;
