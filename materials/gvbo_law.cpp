@@ -98,7 +98,8 @@ Scalars evaluate(const StepConstants& sc, double Gamma) {
 /// until a positive residual is seen), and a Newton step that leaves it is
 /// replaced by bisection, or by doubling while no upper end is known.
 /// @return the root and the scalars evaluated at it (the last iterate, whose
-/// Newton correction is below round-off of Gamma on the scale of k2 + Gamma)
+/// Newton correction is below round-off of Gamma on the scale of k2 + Gamma,
+/// or at which the bracket closed to that size)
 Scalars solveGamma(const StepConstants& sc, double guess, int& iterations) {
   const GvboParameters& p = sc.law->parameters();
   const double psi0 = p.a1 + (p.a2 - p.a1);            // psi(0), as evaluate() forms it
@@ -317,7 +318,7 @@ bool GvboLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n, 
         prepare(*this, ps.J2 * midpointThicknessStretch(ps.lambda3_n, z), ps.dt, de, state_n);
     if (it == 0 && !guessed) { // the law's own start: the elastic overstress
       const Scalars s0 = evaluate(st.sc, 0.0);
-      Gamma = std::max(kSqrt23 * s0.normW / s0.D, 1e-300);
+      Gamma = s0.normW > 0 ? kSqrt23 * s0.normW / s0.D : 0.0; // 0: no overstress, as update()
     }
     const Scalars s = evaluate(st.sc, Gamma);
     const StressAt at(st, s);
@@ -353,9 +354,11 @@ bool GvboLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n, 
     if (!(std::abs(det) > 0) || !std::isfinite(det))
       return false;
     double dz = (a22 * at.sigma[2] - a12 * s.r) / det;
-    const double dGamma = (a11 * s.r - a21 * at.sigma[2]) / det;
-    for (int halve = 0; std::abs(z - dz) > kMaxThicknessIncrement && halve < 60; ++halve)
-      dz *= 0.5;
+    double dGamma = (a11 * s.r - a21 * at.sigma[2]) / det;
+    for (int halve = 0; std::abs(z - dz) > kMaxThicknessIncrement && halve < 60; ++halve) {
+      dz *= 0.5; // a shorter step along the Newton direction
+      dGamma *= 0.5;
+    }
     z -= dz;
     Gamma -= dGamma;
     if (!(Gamma >= 0) || !std::isfinite(z)) // leave it to the safeguarded iterations

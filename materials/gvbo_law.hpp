@@ -75,8 +75,10 @@ public:
   /// GVBO element holds): one Newton on the normal strain increment and the
   /// overstress invariant together, the moduli at J of each iterate,
   /// converged when sigma_zz meets planeStressUpdate's test and Gamma the
-  /// test of update(). Returns false (nothing written) otherwise, or when an
-  /// iterate leaves Gamma >= 0, and planeStressUpdate() runs its Newton.
+  /// test of update(). Returns false, writing nothing, for any other step,
+  /// and when an iterate leaves Gamma >= 0, meets a non-finite value or a
+  /// singular Jacobian, or no iterate converges within
+  /// kPlaneStressMaxIterations: planeStressUpdate() then runs its Newton.
   bool planeStressStep(const PlaneStressStep& step, const double* state_n, double* state,
                        double tolerance, PlaneStressResult& out) const override;
   /// As update(), also reporting Gamma, k, psi, E and iterations in @p info.

@@ -29,9 +29,11 @@ Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& F) {
   for (int it = 0; it < 40; ++it) {
     double det = 0;
     const Eigen::Matrix3d Xit = inverseTranspose(X, det);
+    if (!(det > 0)) // det > 0 holds in exact arithmetic; near a singular F, the SVD
+      break;
     double g = 1;
-    if ((Xit - X).squaredNorm() >
-        1e-4) // scaling only far from R: near it, it would only add round-off
+    // scaling only far from R: near it, it would only add round-off
+    if ((Xit - X).squaredNorm() > 1e-4)
       g = std::sqrt(Xit.norm() / X.norm());
     const Eigen::Matrix3d next = 0.5 * (g * X + Xit / g);
     const double step2 = (next - X).squaredNorm();
@@ -39,11 +41,14 @@ Eigen::Matrix3d polarRotation(const Eigen::Matrix3d& F) {
     // the correction is quadratic in the distance to R: once it is below
     // 1e-9, the next one lies below round-off
     if (step2 <= 1e-18) {
-      X = 0.5 * (X + inverseTranspose(X, det));
-      return X;
+      const Eigen::Matrix3d last = inverseTranspose(X, det);
+      if (!(det > 0))
+        break;
+      return 0.5 * (X + last);
     }
   }
-  // not converged (a stretch far beyond any step's): the SVD
+  // not converged (a stretch far beyond any step's) or a determinant that
+  // round-off turned: the SVD
   const Eigen::JacobiSVD<Eigen::Matrix3d> svd(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
   return svd.matrixU() * svd.matrixV().transpose();
 }

@@ -79,7 +79,9 @@
 /// maps every free direction to zero and is zero on them (d_k^T T_ps = 0,
 /// T_ps d_k = 0). It leaves out what the law's tangent leaves out (d/dJ).
 ///
-/// **Cost.** A linear law: one solve of order 3 + nf. Otherwise one
+/// **Cost.** A linear law: one solve of order 3 + nf. A law's own step:
+/// what the law says (GVBO: about three iterates, each one evaluation of
+/// its moduli and of its overstress equation). Otherwise one
 /// elasticStiffness(J_n), then per iteration one law update with tangent
 /// and one LU of order 3 + nf; no heap allocation, except one copy of the
 /// state when @p state aliases @p state_n.
