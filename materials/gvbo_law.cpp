@@ -92,6 +92,24 @@ Scalars evaluate(const StepConstants& sc, double Gamma) {
   return s;
 }
 
+/// @return true when the Gamma of @p s solves r = 0 to round-off: its Newton
+/// correction |r / dr| is at most 1e-14 of k2' + Gamma
+bool gammaConverged(const StepConstants& sc, const Scalars& s) {
+  return s.dr > 0 && std::abs(s.r) <= 1e-14 * (sc.k2b + s.Gamma) * s.dr;
+}
+
+/// @return where the overstress iteration starts without the last step's
+/// Gamma: the elastic overstress sqrt(2/3) |W(0)| / D(0) (0 without one)
+double elasticOverstress(const StepConstants& sc) {
+  const Scalars s0 = evaluate(sc, 0.0);
+  return s0.normW > 0 ? std::max(kSqrt23 * s0.normW / s0.D, 1e-300) : 0.0;
+}
+
+/// @return true when @p Gamma (the last step's) can start the iteration
+bool usableGuess(double Gamma) {
+  return Gamma > 0 && std::isfinite(Gamma);
+}
+
 /// Root of r(Gamma) = 0 on [0, inf): r(0) <= 0 and r grows without bound.
 /// Newton from @p guess (the last step's Gamma: at a steady rate it is near
 /// the root), safeguarded: the iterates keep a bracket [lo, hi] (hi infinite
@@ -109,11 +127,7 @@ Scalars solveGamma(const StepConstants& sc, double guess, int& iterations) {
     return evaluate(sc, 0.0);
   }
   double lo = 0, hi = std::numeric_limits<double>::infinity();
-  double g = guess;
-  if (!(g > 0 && std::isfinite(g))) {
-    const Scalars s0 = evaluate(sc, 0.0); // the elastic overstress as a start
-    g = std::max(kSqrt23 * s0.normW / s0.D, 1e-300);
-  }
+  double g = usableGuess(guess) ? guess : elasticOverstress(sc);
   for (iterations = 0; iterations < 400; ++iterations) {
     const Scalars s = evaluate(sc, g);
     if (s.r > 0)
@@ -123,8 +137,7 @@ Scalars solveGamma(const StepConstants& sc, double guess, int& iterations) {
     // converged: the Newton correction is below round-off of Gamma on the
     // scale of k2 and Gamma (checked before the bracket, which a root met
     // exactly would leave), or the bracket closed on the root
-    const double scale = sc.k2b + g;
-    if ((s.dr > 0 && std::abs(s.r) <= 1e-14 * scale * s.dr) || hi - lo <= 1e-14 * scale)
+    if (gammaConverged(sc, s) || hi - lo <= 1e-14 * (sc.k2b + g))
       return s;
     double next = s.dr > 0 ? g - s.r / s.dr : lo + 0.5 * (hi - lo);
     if (!(next > lo && next < hi))
@@ -172,19 +185,19 @@ Step prepare(const GvboLaw& law, double J, double dt, const Vector6& de, const d
 
 /// The stress at t_{n+1} of the step @p st at the scalars @p s.
 struct StressAt {
-  Vector6 dev;   // its deviator s = s_n + h - 3 G phi x (eq. 3)
+  Vector6 x;     // the overstress W / D
+  Vector6 dev;   // the deviator s = s_n + h - 3 G phi x (eq. 3)
   Vector6 sigma; // s + p 1, p = p_n + K dth
   StressAt(const Step& st, const Scalars& s)
-      : dev(st.s_n + st.sc.h - 3 * st.m.G * s.phi * (s.W / s.D)), sigma(dev) {
+      : x(s.W / s.D), dev(st.s_n + st.sc.h - 3 * st.m.G * s.phi * x), sigma(dev) {
     sigma.head<3>().array() += st.p_n + st.K * st.dth;
   }
 };
 
 /// Writes the state at t_{n+1} of the step @p st at the scalars @p s.
 void store(const Step& st, const Scalars& s, const StressAt& at, double* state) {
-  const Vector6 x = s.W / s.D;
-  const Vector6 f = st.f_n + st.sc.Etb * s.phi * x;
-  const Vector6 g = at.dev - x;
+  const Vector6 f = st.f_n + st.sc.Etb * s.phi * at.x;
+  const Vector6 g = at.dev - at.x;
   Eigen::Map<Vector6>(state + GvboState::kSigma) = at.sigma;
   Eigen::Map<Vector6>(state + GvboState::kG) = g;
   Eigen::Map<Vector6>(state + GvboState::kF) = f;
@@ -264,7 +277,7 @@ void GvboLaw::updateWithInfo(const PointStep& step, const double* state_n, doubl
   const StressAt at(st, s);
   sigma = at.sigma;
   store(st, s, at, state);
-  const Vector6 x = s.W / s.D;
+  const Vector6& x = at.x;
   if (info)
     *info = {s.Gamma, s.k, s.c * m.E, m.E, iterations};
   if (!tangent)
@@ -306,7 +319,7 @@ bool GvboLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n, 
                         -kMaxThicknessIncrement, kMaxThicknessIncrement);
   const double maxC0 = m_n.lambda + 2 * m_n.G;
   double Gamma = state_n[GvboState::kGamma];
-  const bool guessed = Gamma > 0 && std::isfinite(Gamma);
+  const bool guessed = usableGuess(Gamma);
   Vector6 de;
   de << ps.deps_p[0], ps.deps_p[1], 0, 0.5 * ps.deps_p[2], 0, 0;
   // Newton on (z, Gamma) for sigma_zz = 0 and the overstress equation r = 0,
@@ -316,23 +329,19 @@ bool GvboLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n, 
     de[2] = z;
     const Step st =
         prepare(*this, ps.J2 * midpointThicknessStretch(ps.lambda3_n, z), ps.dt, de, state_n);
-    if (it == 0 && !guessed) { // the law's own start: the elastic overstress
-      const Scalars s0 = evaluate(st.sc, 0.0);
-      Gamma = s0.normW > 0 ? kSqrt23 * s0.normW / s0.D : 0.0; // 0: no overstress, as update()
-    }
+    if (it == 0 && !guessed) // the law's own start (0 without overstress, as update())
+      Gamma = elasticOverstress(st.sc);
     const Scalars s = evaluate(st.sc, Gamma);
     const StressAt at(st, s);
     if (!at.sigma.allFinite() || !std::isfinite(s.r) || !(s.dr > 0))
       return false;
     Vector6 eps = ps.eps_n;
     eps += Vector6(ps.deps_p[0], ps.deps_p[1], z, ps.deps_p[2], 0, 0);
-    const double scale =
-        std::max(at.sigma.cwiseAbs().maxCoeff(),
-                 maxC0 * std::max(ps.eps_n.cwiseAbs().maxCoeff(), eps.cwiseAbs().maxCoeff()));
     const double residual = std::abs(at.sigma[2]);
     // converged as planeStressUpdate's Newton and as the law's own update
     // (solveGamma) would be
-    if (residual <= tolerance * scale && std::abs(s.r) <= 1e-14 * (st.sc.k2b + Gamma) * s.dr) {
+    if (residual <= tolerance * planeStressScale(at.sigma, maxC0, ps.eps_n, eps) &&
+        gammaConverged(st.sc, s)) {
       store(st, s, at, state);
       out = PlaneStressResult{};
       out.eps = eps;
@@ -345,7 +354,7 @@ bool GvboLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n, 
     // Jacobian: dW/dz = (1 - c + a) 2G dev(e_zz) and W deviatoric, so
     // W : dW/dz = (1 - c + a) 2G W_zz
     const double G = st.m.G, w = (1 - s.c + s.a) * 2 * G;
-    const double xzz = s.W[2] / s.D;
+    const double xzz = at.x[2];
     const double a11 = st.K + 4.0 / 3.0 * G - 3 * G * s.phi * w * (2.0 / 3.0) / s.D;
     const double a12 = -3 * G * (s.dphi * xzz + s.phi * (s.dW[2] - xzz * s.dD) / s.D);
     const double a21 = s.normW > 0 ? -kSqrt23 * w * s.W[2] / s.normW : 0.0;

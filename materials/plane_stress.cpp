@@ -159,9 +159,7 @@ PlaneStressResult update(const ConstitutiveLaw& law, const PlaneStressStep& s,
     LAMINA_CHECK(r.sigma.allFinite(), "plane stress: the law's stress is not finite after ", it,
                  " iterations");
     r.residual = constrainedStress(s, B, r.sigma);
-    const double scale =
-        std::max(r.sigma.cwiseAbs().maxCoeff(),
-                 maxC0 * std::max(s.eps_n.cwiseAbs().maxCoeff(), ps.eps.cwiseAbs().maxCoeff()));
+    const double scale = planeStressScale(r.sigma, maxC0, s.eps_n, ps.eps);
     if (r.residual <= tolerance * scale) {
       r.iterations = it;
       storeUnknowns(s, ps, z, r);

@@ -90,6 +90,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <array>
 
 namespace lamina::materials {
@@ -100,6 +101,14 @@ inline constexpr double kMaxThicknessIncrement = 1.5;
 /// @return lambda3 at t_{n+1} from the midpoint rule (file comment)
 inline double midpointThicknessStretch(double lambda3_n, double deps_zz) {
   return lambda3_n * (2 + deps_zz) / (2 - deps_zz);
+}
+
+/// @return the stress scale of the convergence test (file comment):
+/// max(max|sigma|, maxC0 max(max|eps_n|, max|eps|)), maxC0 = max|C0|
+inline double planeStressScale(const Vector6& sigma, double maxC0, const Vector6& eps_n,
+                               const Vector6& eps) {
+  return std::max(sigma.cwiseAbs().maxCoeff(),
+                  maxC0 * std::max(eps_n.cwiseAbs().maxCoeff(), eps.cwiseAbs().maxCoeff()));
 }
 
 /// Default tolerance of planeStressUpdate (see the file comment).
