@@ -136,10 +136,12 @@ struct Cli {
 /// The strings CLI11 fills in; turned into the enums of Cli once, after parsing.
 struct CliNames {
   std::string plan = "auto", estimate = "energy", precision = "auto", path;
-  CLI::Option* rate = nullptr; ///< --rate, to tell whether it was given
-  CLI::Option* to = nullptr;   ///< --to, likewise
-  CLI::Option* tol = nullptr;  ///< --tol (the reduced-order default is tighter)
-  CLI::Option* seed = nullptr; ///< --partition-seed
+  std::string scheme = "tfa";           ///< --scheme of --reduced-order
+  CLI::Option* scheme_option = nullptr; ///< --scheme, to tell whether it was given
+  CLI::Option* rate = nullptr;          ///< --rate, to tell whether it was given
+  CLI::Option* to = nullptr;            ///< --to, likewise
+  CLI::Option* tol = nullptr;           ///< --tol (the reduced-order default is tighter)
+  CLI::Option* seed = nullptr;          ///< --partition-seed
 };
 
 void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names);
@@ -229,6 +231,13 @@ void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names) {
   names.seed = app.add_option("--partition-seed", cli.partition_seed,
                               "reduced-order: seed of the k-means++ seeding")
                    ->check(CLI::NonNegativeNumber);
+  names.scheme_option =
+      app.add_option("--scheme", names.scheme,
+                     "reduced-order: how the partitions interact, tfa (transformation-field "
+                     "analysis, the chapter's eqs. 22-34) or clustering (clustering analysis in a "
+                     "reference medium that follows the softest "
+                     "phase as it flows)")
+          ->check(CLI::IsMember({"tfa", "clustering"}));
 }
 
 /// @return the value of @p name in @p choices (a core::EnumNames; @p name
@@ -285,11 +294,13 @@ void checkReducedOrderOptions(const Cli& cli, const CliNames& names) {
                                    ": a reduced-order cell entry is a mode of its own (run "
                                    "them as two commands)",
                                CLI::ExitCodes::ValidationError);
-  if (!cli.reduced_order && (cli.partitions > 0 || names.seed->count() > 0))
-    throw CLI::ValidationError(
-        std::string(cli.partitions > 0 ? "--partitions" : "--partition-seed") +
-            ": only with --reduced-order",
-        CLI::ExitCodes::ValidationError);
+  if (!cli.reduced_order &&
+      (cli.partitions > 0 || names.seed->count() > 0 || names.scheme_option->count() > 0))
+    throw CLI::ValidationError(std::string(cli.partitions > 0        ? "--partitions"
+                                           : names.seed->count() > 0 ? "--partition-seed"
+                                                                     : "--scheme") +
+                                   ": only with --reduced-order",
+                               CLI::ExitCodes::ValidationError);
   if (names.seed->count() > 0 && cli.partitions == 0)
     throw CLI::ValidationError("--partition-seed: seeds the k-means of --partitions K (without "
                                "it every phase is one partition)",
@@ -309,6 +320,7 @@ lamina::homogenize::ReducedOrderOptions reducedOrderOptions(const Cli& cli, cons
     opt.partitions.per_phase = cli.partitions;
     opt.partitions.seed = static_cast<std::uint64_t>(cli.partition_seed);
   }
+  opt.scheme = lamina::materials::reducedOrderSchemeFrom(names.scheme, "--scheme");
   return opt;
 }
 

@@ -7,6 +7,7 @@
 #include "core/resources.hpp"
 #include "homogenize/cell_operator.hpp"
 #include "homogenize/cg_solver.hpp"
+#include "homogenize/cluster_interaction.hpp"
 #include "homogenize/fft.hpp"
 #include "homogenize/field_operator.hpp"
 #include "homogenize/green_operator.hpp"
@@ -83,7 +84,15 @@ ReducedOrderResult ReducedOrderBuilder::run() {
   features_ = std::vector<double>(); // no longer needed
   // 3. per partition and unit eigenstrain: S, P, and R, Q (eq. 40)
   influenceFunctions(res);
-  // 4. C, density, D_lin; the cost
+  // 4. clustering: the interaction tensors
+  if (opt_.scheme == materials::ReducedOrderScheme::Clustering) {
+    ClusterInteraction g =
+        clusterInteraction(grid_, res.partitions.label, res.partitions.voxels, threads_.count());
+    res.model.scheme = opt_.scheme;
+    res.model.Ga = std::move(g.Ga);
+    res.model.Gb = std::move(g.Gb);
+  }
+  // 5. C, density, D_lin; the cost
   finish(res);
   res.cost.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   res.cost.peak_bytes = core::peakResidentBytes();

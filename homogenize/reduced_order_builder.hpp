@@ -26,7 +26,9 @@
 ///    P^(beta alpha) is the mean strain D S of partition beta. With a cell
 ///    size: R and Q of eq. 40 from S's spectrum (DispersionAccumulator::
 ///    addInfluence), in kg/m.
-/// 4. C = sym(sum_beta c_beta L0_beta A^(beta)) (the stress estimate of the
+/// 4. Clustering (options.scheme): the interaction tensors
+///    Ga, Gb of the partitions (cluster_interaction.hpp), no further solve.
+/// 5. C = sym(sum_beta c_beta L0_beta A^(beta)) (the stress estimate of the
 ///    six cases, symmetrized: the stiffness the reduced-order law has when
 ///    every phase stays elastic), rho_c the voxel-weighted density.
 ///
@@ -64,20 +66,23 @@ struct ReducedOrderOptions {
   /// CG tolerance of every solve (cg_solver.hpp); the identities above hold
   /// to about this, C's symmetry too
   double tol = 1e-8;
-  int max_iterations = 10000; ///< per solve; exceeding it is an error
-  int threads = 0;            ///< OpenMP and FFTW threads (0: solverThreads())
-  int measure = -1;           ///< FFTW_MEASURE: 1 yes, 0 no, -1 auto (above 64^3)
-  bool quiet = true;          ///< no progress line
+  int max_iterations = 10000;  ///< per solve; exceeding it is an error
+  int threads = 0;             ///< OpenMP and FFTW threads (0: solverThreads())
+  int measure = -1;            ///< FFTW_MEASURE: 1 yes, 0 no, -1 auto (above 64^3)
+  bool quiet = true;           ///< no progress line
   PartitionOptions partitions; ///< how the cell is split
+  /// how the law couples the partitions; clustering adds
+  /// the interaction tensors Ga, Gb (cluster_interaction.hpp) to the model
+  materials::ReducedOrderScheme scheme = materials::ReducedOrderScheme::Transformation;
 };
 
 /// The one-off cost of a build.
 struct ReducedOrderCost {
-  int solves = 0;              ///< 6 macro load cases + 6 per partition
-  long iterations = 0;         ///< CG iterations of all solves
-  double max_residual = 0;     ///< largest final residual of a solve
-  double wall_s = 0;           ///< wall time of run() (s)
-  double peak_bytes = 0;       ///< peak resident set of the process at the end (bytes)
+  int solves = 0;          ///< 6 macro load cases + 6 per partition
+  long iterations = 0;     ///< CG iterations of all solves
+  double max_residual = 0; ///< largest final residual of a solve
+  double wall_s = 0;       ///< wall time of run() (s)
+  double peak_bytes = 0;   ///< peak resident set of the process at the end (bytes)
   /// doubles held for R and Q: the spectra of the 6 n influence functions
   /// (6 Nc each; 0 without micro-inertia)
   double influence_doubles = 0;

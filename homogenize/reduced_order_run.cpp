@@ -95,6 +95,7 @@ materials::Material makeReducedOrderEntry(const std::string& name, const micro::
     p.insert("lloyd_iterations", lloyd);
   }
   p.insert("reference_stiffness", "each phase's law at J = 1 (elasticStiffness(1.0))");
+  p.insert("scheme", materials::toString(model.scheme));
   p.insert("solver", kSolverName);
   p.insert("tol", options.tol);
   p.insert("solves", result.cost.solves);

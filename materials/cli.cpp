@@ -363,12 +363,17 @@ void showReducedOrder(const mat::Library& lib, const mat::Material& m) {
               << lamina::core::formatShort(ph.density, 6) << " kg/m^3  " << count[p]
               << (count[p] == 1 ? " partition" : " partitions") << "\n";
   }
-  std::cout << "  partitions " << law.model().partitions() << ", "
+  const bool clustering = law.model().scheme == mat::ReducedOrderScheme::Clustering;
+  std::cout << "  scheme " << mat::toString(law.model().scheme)
+            << (clustering ? " (clustering analysis)" : " (transformation-field analysis)") << "\n"
+            << "  partitions " << law.model().partitions() << ", "
             << law.nonlinearPartitions().size()
-            << " nonlinear (the Newton unknowns: " << 6 * law.nonlinearPartitions().size()
+            << " nonlinear (the Newton unknowns: " << 6 * law.unknownPartitions().size()
             << " per point)\n"
             << "  state " << law.stateSize()
-            << " doubles per point (per partition: its strain, 6, then its law's state)\n";
+            << " doubles per point (per partition: its strain, 6, then its law's state"
+            << (clustering && law.stateSize() > 0 ? "; then the reference shear modulus, 1" : "")
+            << ")\n";
 }
 
 /// `show`: one entry, human-readable or as JSON.

@@ -58,6 +58,7 @@ nlohmann::json showJson(const Library& library, const Material& m) {
     j["phases"][p]["partitions"] = count[p];
   j["state_doubles"] = law.stateSize();
   j["nonlinear_partitions"] = law.nonlinearPartitions().size();
+  j["scheme"] = toString(law.model().scheme);
   return j;
 }
 

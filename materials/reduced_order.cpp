@@ -11,6 +11,8 @@ namespace lamina::materials {
 namespace {
 
 constexpr const char* kFormat = "lamina-reduced-order-cell 1";
+/// a clustering cell: format 1 plus /Ga, /Gb and "scheme"
+constexpr const char* kFormatClustering = "lamina-reduced-order-cell 2";
 
 using Dims = std::vector<std::uint64_t>;
 
@@ -76,6 +78,19 @@ Eigen::MatrixXd matrix(const std::vector<double>& v, Eigen::Index rows, Eigen::I
 
 } // namespace
 
+const char* toString(ReducedOrderScheme scheme) {
+  return scheme == ReducedOrderScheme::Clustering ? "clustering" : "tfa";
+}
+
+ReducedOrderScheme reducedOrderSchemeFrom(const std::string& name, const std::string& where) {
+  if (name == "tfa")
+    return ReducedOrderScheme::Transformation;
+  if (name == "clustering")
+    return ReducedOrderScheme::Clustering;
+  throw Error(where + ": unknown reduced-order scheme '" + name +
+              "' (tfa: transformation-field analysis, clustering: clustering analysis)");
+}
+
 std::vector<int> ReducedOrderModel::partitionsPerPhase() const {
   std::vector<int> count(phases.size(), 0);
   for (std::int32_t p : partition_phase)
@@ -95,16 +110,16 @@ void ReducedOrderModel::validate(const std::string& where) const {
   const auto un = static_cast<std::size_t>(n);
   LAMINA_CHECK(n >= 1, where, ": a reduced-order cell needs at least one partition");
   LAMINA_CHECK(!phases.empty(), where, ": a reduced-order cell needs at least one phase");
-  LAMINA_CHECK(partition_phase.size() == un && A.size() == un && P.size() == un * un, where,
-               ": ", n, " partitions but ", partition_phase.size(), " phase indices, ", A.size(),
+  LAMINA_CHECK(partition_phase.size() == un && A.size() == un && P.size() == un * un, where, ": ",
+               n, " partitions but ", partition_phase.size(), " phase indices, ", A.size(),
                " A and ", P.size(), " P matrices (expected ", n, ", ", n, ", ", n * n, ")");
-  LAMINA_CHECK(R.rows() == 6 * n && R.cols() == 6 * n && Q.rows() == 6 && Q.cols() == 6 * n,
-               where, ": R must be ", 6 * n, " x ", 6 * n, " and Q 6 x ", 6 * n);
+  LAMINA_CHECK(R.rows() == 6 * n && R.cols() == 6 * n && Q.rows() == 6 && Q.cols() == 6 * n, where,
+               ": R must be ", 6 * n, " x ", 6 * n, " and Q 6 x ", 6 * n);
   double sum = 0;
   for (std::size_t a = 0; a < un; ++a) {
     const std::int32_t p = partition_phase[a];
-    LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < phases.size(), where, ": partition ",
-                 a, " names phase ", p, " of ", phases.size());
+    LAMINA_CHECK(p >= 0 && static_cast<std::size_t>(p) < phases.size(), where, ": partition ", a,
+                 " names phase ", p, " of ", phases.size());
     LAMINA_CHECK(std::isfinite(fraction[a]) && fraction[a] > 0 && fraction[a] <= 1, where,
                  ": partition ", a, " has volume fraction ", fraction[a], " (must be in (0, 1])");
     LAMINA_CHECK(finite(A[a]), where, ": A of partition ", a, " is not finite");
@@ -115,6 +130,13 @@ void ReducedOrderModel::validate(const std::string& where) const {
   for (std::size_t k = 0; k < P.size(); ++k)
     LAMINA_CHECK(finite(P[k]), where, ": P of partitions (", k / un, ", ", k % un,
                  ") is not finite");
+  const bool clustering = scheme == ReducedOrderScheme::Clustering;
+  LAMINA_CHECK(Ga.size() == (clustering ? un * un : 0) && Gb.size() == Ga.size(), where, ": ",
+               clustering ? "a clustering cell needs " : "a cell of scheme tfa has ",
+               clustering ? n * n : 0, " Ga and Gb matrices, not ", Ga.size(), " and ", Gb.size());
+  for (std::size_t k = 0; k < Ga.size(); ++k)
+    LAMINA_CHECK(finite(Ga[k]) && finite(Gb[k]), where, ": Ga or Gb of partitions (", k / un, ", ",
+                 k % un, ") is not finite");
   LAMINA_CHECK(finite(R) && finite(Q) && finite(D_lin) && finite(C), where,
                ": R, Q, D_lin and C must be finite");
   LAMINA_CHECK(std::isfinite(density) && density > 0, where, ": density ", density,
@@ -125,7 +147,13 @@ void writeReducedOrderArrays(const std::filesystem::path& path, const ReducedOrd
   m.validate(path.string());
   const auto n = static_cast<std::uint64_t>(m.partitions());
   core::H5File f(path, core::H5File::Mode::Create);
-  f.writeAttribute("/", "format", kFormat);
+  const bool clustering = m.scheme == ReducedOrderScheme::Clustering;
+  f.writeAttribute("/", "format", clustering ? kFormatClustering : kFormat);
+  if (clustering) {
+    f.writeAttribute("/", "scheme", toString(m.scheme));
+    f.writeDoubles("/Ga", flatten(m.Ga).data(), {n, n, 6, 6});
+    f.writeDoubles("/Gb", flatten(m.Gb).data(), {n, n, 6, 6});
+  }
   f.writeInts("/partition_phase", m.partition_phase.data(), {n});
   f.writeDoubles("/fraction", m.fraction.data(), {n});
   f.writeDoubles("/A", flatten(m.A).data(), {n, 6, 6});
@@ -146,8 +174,19 @@ void readReducedOrderArrays(const std::filesystem::path& path, ReducedOrderModel
   } catch (const Error&) {
     format.clear();
   }
-  LAMINA_CHECK(format == kFormat, path.string(), ": not a reduced-order cell file (attribute "
-               "'format' is '", format, "', expected '", kFormat, "')");
+  LAMINA_CHECK(format == kFormat || format == kFormatClustering, path.string(),
+               ": not a reduced-order cell file (attribute 'format' is '", format, "', expected '",
+               kFormat, "' or '", kFormatClustering, "')");
+  m.scheme = ReducedOrderScheme::Transformation;
+  if (format == kFormatClustering) {
+    std::string scheme;
+    try {
+      scheme = f.readStringAttribute("/", "scheme");
+    } catch (const Error&) {
+      scheme = "(missing)";
+    }
+    m.scheme = reducedOrderSchemeFrom(scheme, path.string() + ": attribute 'scheme'");
+  }
   Dims dims;
   m.partition_phase = f.readInts("/partition_phase", dims);
   // 4096 partitions: R alone is then 1.2 GB, and every index (beta n +
@@ -161,6 +200,12 @@ void readReducedOrderArrays(const std::filesystem::path& path, ReducedOrderModel
   m.P = matrices(readShaped(f, "/P", {n, n, 6, 6}));
   m.R = matrix(readShaped(f, "/R", {6 * n, 6 * n}), 6 * in, 6 * in);
   m.Q = matrix(readShaped(f, "/Q", {6, 6 * n}), 6, 6 * in);
+  m.Ga.clear();
+  m.Gb.clear();
+  if (m.scheme == ReducedOrderScheme::Clustering) {
+    m.Ga = matrices(readShaped(f, "/Ga", {n, n, 6, 6}));
+    m.Gb = matrices(readShaped(f, "/Gb", {n, n, 6, 6}));
+  }
   m.D_lin = matrix(readShaped(f, "/D_lin", {6, 6}), 6, 6);
   m.C = matrix(readShaped(f, "/C", {6, 6}), 6, 6);
   m.density = readShaped(f, "/density", {1})[0];

@@ -43,16 +43,35 @@
 
 namespace lamina::materials {
 
+/// How the law couples the partitions (reduced_order_law.hpp).
+enum class ReducedOrderScheme {
+  /// transformation-field analysis, the chapter's eqs. 22-34: eigenstrains
+  /// through the influence functions A, P of each phase's reference
+  /// stiffness; exact for elastic phases with any partitioning
+  Transformation,
+  /// clustering analysis (Liu, Bessa and Liu 2016): the partitions'
+  /// Lippmann-Schwinger equation in an isotropic reference medium that
+  /// follows the softest phase's secant shear modulus, through Ga, Gb
+  Clustering
+};
+
+/// @return "tfa" or "clustering", the scheme's name on the command line and in files
+const char* toString(ReducedOrderScheme scheme);
+
+/// @return the scheme named @p name ("tfa", "clustering"); throws lamina::Error
+/// naming @p where and the two names otherwise
+ReducedOrderScheme reducedOrderSchemeFrom(const std::string& name, const std::string& where);
+
 /// One phase of the cell: its name in the cell file and its law.
 struct ReducedOrderPhase {
-  std::string name; ///< phase name of the cell file ("soft", "hard")
-  LawSpec law;      ///< the law (its C at J = 1 is the reference stiffness L0)
+  std::string name;   ///< phase name of the cell file ("soft", "hard")
+  LawSpec law;        ///< the law (its C at J = 1 is the reference stiffness L0)
   double density = 0; ///< kg/m^3
 };
 
 /// The reduced-order model of one cell.
 struct ReducedOrderModel {
-  std::vector<ReducedOrderPhase> phases; ///< the cell's phases
+  std::vector<ReducedOrderPhase> phases;     ///< the cell's phases
   std::vector<std::int32_t> partition_phase; ///< n: phase index of partition alpha
   std::vector<double> fraction;              ///< n: volume fraction c_alpha (sum 1)
   std::vector<Matrix6> A;                    ///< n: strain concentration A^(alpha)
@@ -61,6 +80,12 @@ struct ReducedOrderModel {
   std::vector<Matrix6> P;
   Eigen::MatrixXd R; ///< 6n x 6n: block (alpha, beta) is R^(alpha beta) (kg/m)
   Eigen::MatrixXd Q; ///< 6 x 6n: block alpha is Q^(alpha) (kg/m)
+  /// how the law couples the partitions
+  ReducedOrderScheme scheme = ReducedOrderScheme::Transformation;
+  /// clustering only (else empty), n * n each: the two
+  /// fixed parts of the interaction tensors, G^(IJ) = (Ga - beta Gb) / mu0
+  /// of the reference medium (homogenize/cluster_interaction.hpp)
+  std::vector<Matrix6> Ga, Gb;
   Matrix6 D_lin = Matrix6::Zero(); ///< zeta^2 D_lin of eq. 38 (kg/m)
   Matrix6 C = Matrix6::Zero();     ///< effective reference stiffness of the cell (Pa)
   double density = 0;              ///< mean density rho_c (kg/m^3)
@@ -81,7 +106,10 @@ struct ReducedOrderModel {
 /// the HDF5 file @p path: datasets /partition_phase (n), /fraction (n),
 /// /A (n x 6 x 6), /P (n x n x 6 x 6), /R (6n x 6n), /Q (6 x 6n), /D_lin
 /// (6 x 6), /C (6 x 6), /density (1), and the attribute "format" =
-/// "lamina-reduced-order-cell 1" on "/".
+/// "lamina-reduced-order-cell 1" on "/". A clustering cell
+/// also has /Ga and /Gb (n x n x 6 x 6) and the attribute "scheme" = "clustering",
+/// and is format "lamina-reduced-order-cell 2" (a reader of format 1 alone
+/// refuses it rather than run it as the other scheme).
 void writeReducedOrderArrays(const std::filesystem::path& path, const ReducedOrderModel& m);
 
 /// Reads the arrays written by writeReducedOrderArrays into @p m (whose

@@ -82,6 +82,59 @@
 /// stateSize() doubles; the law object holds the model (36 n^2 + 72 n^2 for
 /// P and R).
 ///
+/// **Clustering** (model().scheme == ReducedOrderScheme::Clustering; the
+/// clustering analysis of Liu, Bessa and Liu 2016, with its own choice of
+/// reference medium). The partitions are coupled through an isotropic
+/// reference medium C0 (Lame lambda0, mu0) instead of the phases' own
+/// stiffnesses: the Lippmann-Schwinger equation eps = eps^c - Gamma0 (sigma
+/// - C0 eps), averaged over partition beta with every field uniform per
+/// partition, is
+///
+///     r^(beta) = eps^(beta) - eps^c + sum_alpha G^(beta alpha) (sigma^(alpha) - C0 eps^(alpha)) =
+///     0,
+///
+/// G^(beta alpha) = (Ga - beta0 Gb) / mu0 with beta0 = (lambda0 + mu0) /
+/// (lambda0 + 2 mu0) (homogenize/cluster_interaction.hpp), one unknown
+/// eps^(beta) per partition, linear ones too. Newton with K_(beta alpha) =
+/// delta I + G^(beta alpha) (T_alpha - C0); sigma^c = sum c_alpha
+/// sigma^(alpha); d eps / d eps^c = K^-1 [I; ...; I] and C_T = sum c_alpha
+/// T_alpha d eps^(alpha) / d eps^c (at fixed C0).
+///
+/// The reference medium. Exact answers (a laminate, one partition per
+/// voxel) do not depend on it; with a few partitions per phase it is what
+/// decides how stiffly the partitions hold each other. Its shear modulus
+/// mu0 is the smallest secant shear modulus of the phases, mu_p = (dev
+/// sigma_p : dev eps_p) / (2 dev eps_p : dev eps_p) of each phase's mean
+/// stress and strain at the end of the step (a phase without deviatoric
+/// strain has none; never below 1e-3 of the value at rest). This is the
+/// Hashin-Shtrikman lower-bound choice of a matrix-inclusion cell, whose
+/// continuous soft phase sets the interactions, followed as that phase
+/// flows: once the soft domains flow, their secant falls far below their
+/// instantaneous modulus, and the partitions interact through that softer
+/// medium instead of the elastic one (the transformation scheme's frozen
+/// influence functions, or a reference fitted to the consistent tangent,
+/// which stays near the instantaneous stiffness in the short steps of a
+/// viscous law: both measured 3-10x further from the full-field cell than
+/// this choice, docs/homogenize-nonlinear.md). Its bulk modulus kappa0 is
+/// fixed: the bulk modulus of the isotropic part (C_iijj / 9) of the cell's
+/// tangent at rest in that medium, iterated to a fixed point once (taking it
+/// from the current tangent instead changed the study's figures by less
+/// than 0.01 %). A step runs in the medium fitted at the end of the step
+/// before (the state keeps it), and its own fit is the next step's: within
+/// a step the stress is then a smooth function of the strain and C_T its
+/// exact derivative, which the membrane's plane-stress iteration needs (a
+/// medium refitted within the step, iterated to a tolerance, made the
+/// stress jitter at that tolerance, and the iteration stalled). The lag
+/// costs accuracy only in coarse steps: the study's 60 steps to 0.3 give
+/// up to 0.7 points more than the refitted medium did.
+/// At rest (initState(), elasticStiffness(J)) mu0 is the smallest
+/// isotropic shear modulus of the phases at J. With elastic phases and a
+/// few partitions the stiffness is therefore this estimate, not the FFT C
+/// (which the transformation scheme reproduces exactly).
+/// The eigenstrains of eq. 40's micro-inertia are mu^(alpha) = eps^(alpha)
+/// - L0^-1 sigma^(alpha) as in the other scheme, through the same R and Q.
+/// State: as above for every partition, then mu0 (1).
+///
 /// **Linear cells.** When every partition's law is linear the cell is linear
 /// elasticity: isLinear() is true, stateSize() is 0 (the partition strains
 /// A^(alpha) eps are not stored) and sigma = (sum c L A) eps exactly, so
@@ -92,6 +145,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -116,6 +170,7 @@ struct ReducedOrderStepInfo {
   /// d(d mu)/d(d eps^c) of the nonlinear partitions, stacked in the order of
   /// ReducedOrderLaw::nonlinearPartitions() (6m x 6, engineering strain)
   Eigen::MatrixXd dmu_deps;
+  double lambda0 = 0, mu0 = 0; ///< clustering: the reference medium used
 };
 
 /// A reduced-order cell at a material point (see the file comment).
@@ -166,8 +221,15 @@ public:
   const std::string& entry() const { return entry_; }
   /// @return the cell
   const ReducedOrderModel& model() const { return model_; }
-  /// @return the partitions whose law is not linear (the Newton unknowns), ascending
+  /// @return the partitions whose law is not linear, ascending (the Newton
+  /// unknowns of the transformation scheme; clustering solves for every
+  /// partition)
   const std::vector<int>& nonlinearPartitions() const { return nonlinear_; }
+  /// @return the partitions whose strains the Newton solves for
+  const std::vector<int>& unknownPartitions() const { return unknown_; }
+  /// @return clustering: the reference medium (lambda0, mu0) initState()
+  /// starts from, the one at rest (J = 1)
+  std::array<double, 2> initialReference() const { return lameOf(mu_rest_); }
   /// @return the offset of partition @p alpha's block in the state (its
   /// strain; its law's state follows at offset + 6). Linear cells: none.
   int stateOffset(int alpha) const { return offset_[static_cast<std::size_t>(alpha)]; }
@@ -176,24 +238,45 @@ public:
 
 private:
   struct Trial;
-  /// Steps every nonlinear partition to the strains of @p trial.
+  struct Reference;
+  /// Steps every unknown partition to the strains of @p trial.
   void evaluate(const PointStep& step, const double* state_n, Trial& trial) const;
-  /// Newton on the nonlinear partitions' strains from @p trial's start
+  /// Newton on the unknown partitions' strains from @p trial's start
   /// until the residual is below the tolerance (relative to the terms it
   /// sums); @p iterations and @p norm report the last one. Throws (fail())
-  /// at the iteration cap or a non-finite residual.
-  void solveStrains(const PointStep& step, const double* state_n, Trial& trial, int& iterations,
-                    double& norm) const;
+  /// at the iteration cap or a non-finite residual. @p ref: the reference
+  /// medium of clustering (else null).
+  void solveStrains(const PointStep& step, const double* state_n, const Reference* ref,
+                    Trial& trial, int& iterations, double& norm) const;
+  /// The residual r of the file comment into @p r; @return the size of the terms it sums.
+  double residual(const Vector6& eps_c, const Reference* ref, const Trial& t,
+                  Eigen::VectorXd& r) const;
   /// Writes the accepted partition strains and law states of @p trial into @p state.
   void accept(const PointStep& step, const Trial& trial, double* state) const;
-  /// d eps_N / d eps^c and d mu_N / d eps^c from the partition tangents @p T.
-  void sensitivities(const std::vector<Matrix6>& T, Eigen::MatrixXd& deps,
+  /// d eps_U / d eps^c (the unknowns) and d mu_N / d eps^c (the nonlinear
+  /// partitions) from the partition tangents @p T.
+  void sensitivities(const std::vector<Matrix6>& T, const Reference* ref, Eigen::MatrixXd& deps,
                      Eigen::MatrixXd& dmu) const;
   /// The coarse tangent from the tangents @p T and sensitivities.
   Matrix6 coarseTangent(const std::vector<Matrix6>& T, const Eigen::MatrixXd& deps,
                         const Eigen::MatrixXd& dmu) const;
   /// K of the file comment from the partition tangents @p T.
-  Eigen::MatrixXd jacobian(const std::vector<Matrix6>& T) const;
+  Eigen::MatrixXd jacobian(const std::vector<Matrix6>& T, const Reference* ref) const;
+  /// Clustering: the reference medium of shear modulus @p mu0 and the bulk
+  /// modulus kappa0 (file comment), as Lame constants.
+  std::array<double, 2> lameOf(double mu0) const;
+  /// @return the smallest isotropic shear modulus of the tangents @p T
+  double softestShear(const std::vector<Matrix6>& T) const;
+  /// Clustering: the tangent of the cell whose partitions have the tangents
+  /// @p T (all partitions) in the reference medium of shear modulus @p mu0.
+  Matrix6 referenceTangent(const std::vector<Matrix6>& T, double mu0) const;
+  /// Clustering: the reference shear modulus fitted to the solved
+  /// partitions of @p t (file comment); @p last where no phase has one.
+  double stepReference(const Trial& t, const Vector6& eps_c, double last) const;
+  /// The constructor's last part: the scheme's precomputed sums (tfa:
+  /// C_linear_, B_; clustering: its reference medium at rest) and R, Q of
+  /// the nonlinear partitions.
+  void prepareCoupling();
   /// Throws unless sym(sum c L0 A) of the phases' laws equals the model's C
   /// (1e-9 of max|C|): the phases in the library text belong to the arrays.
   void checkPhasesMatchArrays() const;
@@ -207,10 +290,18 @@ private:
   std::vector<LawPtr> laws_;            ///< per partition (shared per phase)
   std::vector<Matrix6> L0_, L0inv_;     ///< per partition
   std::vector<int> nonlinear_, linear_; ///< partition indices
+  bool clustering_ = false;             ///< the scheme is clustering
+  std::vector<int> unknown_;            ///< the Newton's partitions (see unknownPartitions())
+  std::vector<int> nl_slot_;            ///< per nonlinear partition k: its index in unknown_
+  double kappa0_ = 0;                   ///< clustering: the reference bulk modulus (file comment)
+  double mu_rest_ = 0;                  ///< clustering: the reference shear modulus at rest
+  int reference_offset_ = -1;           ///< clustering: mu0 in the state
   std::vector<int> offset_;             ///< per partition: start of its state block
-  std::vector<int> trial_offset_;       ///< per nonlinear partition: its law state in a Trial
+  std::vector<int> trial_offset_;       ///< per unknown partition: its law state in a Trial
   int state_size_ = 0, trial_state_size_ = 0;
-  Matrix6 C_linear_;            ///< sum over linear e of c_e L_e A^(e)
+  /// transformation: sum over linear e of c_e L_e A^(e); clustering: zero,
+  /// or for a linear cell its stiffness (referenceTangent at rest)
+  Matrix6 C_linear_;
   std::vector<Matrix6> B_;      ///< per nonlinear a: sum over linear e of c_e L_e P^(e a)
   Eigen::MatrixXd R_nl_, Q_nl_; ///< R, Q restricted to the nonlinear partitions
 };

@@ -70,7 +70,7 @@ fi
 step "5. Rate-dependent polyurea: the two-scale cell (Table 11) as a reduced-order law, and a"
 printf '   polyurea sheet struck at 100 m/s with three laws: elastic, GVBO (Table 5), the cell\n'
 "$BIN/homogenize" cases/cells/polyurea-two-scale.toml --library "$LIB" --name pu-rom \
-  --reduced-order --quiet
+  --reduced-order --scheme clustering --quiet
 impact() { # impact DIR MATERIAL
   local dir="$OUT/impact/$1"
   mkdir -p "$dir"

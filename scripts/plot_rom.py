@@ -15,7 +15,10 @@ peak over the curve.
 Usage:
   /usr/bin/python3 scripts/plot_rom.py --cell cases/cells/polyurea-two-scale.toml \
       --partitions 1,8 --rates 1e2,2.6e3,1e5 --to 0.3 --steps 60 \
-      --work rom-study --out rom-vs-full-field.png [--resolution N] [--bin build/bin]
+      --work rom-study --out rom-vs-full-field.png [--schemes tfa,clustering] \
+      [--resolution N] [--bin build/bin]
+--schemes: the reduced-order schemes (`homogenize --scheme`), each with every
+--partitions; one column per pair.
 Prints the table (markdown) and writes the plot to --out and the table to
 WORK/table.md, printing "wrote PATH" for each."""
 import argparse
@@ -60,6 +63,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--cell", default="cases/cells/polyurea-two-scale.toml")
     ap.add_argument("--partitions", default="1,8", help="partitions per phase, one entry each")
+    ap.add_argument("--schemes", default="tfa", help="reduced-order schemes (tfa, clustering)")
     ap.add_argument("--rates", default="1e2,2.6e3,1e5")
     ap.add_argument("--paths", default=",".join(PATHS))
     ap.add_argument("--to", type=float, default=0.3)
@@ -74,15 +78,16 @@ def main():
     res = ["--resolution", str(a.resolution)] if a.resolution else []
     rates = a.rates.split(",")
     paths = a.paths.split(",")
-    parts = [int(k) for k in a.partitions.split(",")]
+    parts = [(sch, int(k)) for sch in a.schemes.split(",") for k in a.partitions.split(",")]
 
     names = {}
-    for k in parts:
-        names[k] = "rom-k%d" % k
-        if not os.path.exists(os.path.join(a.work, names[k] + ".done")):
-            run([os.path.join(a.bin, "homogenize"), a.cell, "--library", lib, "--name", names[k],
-                 "--reduced-order", "--partitions", str(k), "--overwrite", "--quiet"] + res)
-            open(os.path.join(a.work, names[k] + ".done"), "w").close()
+    for sch, k in parts:
+        names[(sch, k)] = "rom-%s-k%d" % (sch, k)
+        if not os.path.exists(os.path.join(a.work, names[(sch, k)] + ".done")):
+            run([os.path.join(a.bin, "homogenize"), a.cell, "--library", lib, "--name",
+                 names[(sch, k)], "--reduced-order", "--partitions", str(k), "--scheme", sch,
+                 "--overwrite", "--quiet"] + res)
+            open(os.path.join(a.work, names[(sch, k)] + ".done"), "w").close()
 
     table, curves = [], {}
     for path in paths:
@@ -95,15 +100,16 @@ def main():
                 os.replace(ff + ".part", ff)
             curves[(path, rate, "ff")] = curve(ff, path)
             row = [path, rate]
-            for k in parts:
-                rom = os.path.join(a.work, "rom-k%d-%s-%s.csv" % (k, path, rate))
-                run([os.path.join(a.bin, "materials"), "drive", names[k], "--library", lib,
+            for sch, k in parts:
+                rom = os.path.join(a.work, "%s-%s-%s.csv" % (names[(sch, k)], path, rate))
+                run([os.path.join(a.bin, "materials"), "drive", names[(sch, k)], "--library", lib,
                      "--kinematics", "small", "--out", rom] + common)
-                curves[(path, rate, k)] = curve(rom, path)
-                row.append(agreement(curves[(path, rate, "ff")][1], curves[(path, rate, k)][1]))
+                curves[(path, rate, sch, k)] = curve(rom, path)
+                row.append(agreement(curves[(path, rate, "ff")][1],
+                                     curves[(path, rate, sch, k)][1]))
             table.append(row)
 
-    head = "| path | rate (1/s) | " + " | ".join("%d per phase" % k for k in parts) + " |"
+    head = "| path | rate (1/s) | " + " | ".join("%s, %d per phase" % p for p in parts) + " |"
     lines = [head, "|" + "---|" * (2 + len(parts))]
     for row in table:
         lines.append("| %s | %s | " % (row[0], row[1]) +
@@ -118,14 +124,15 @@ def main():
     if len(paths) == 1:
         axes = [axes]
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    styles = ["--", ":", "-."]
+    styles = ["--", ":", "-.", (0, (3, 1, 1, 1, 1, 1)), (0, (1, 3))]
     for ax, path in zip(axes, paths):
         for c, rate in enumerate(rates):
             e, s = curves[(path, rate, "ff")]
             ax.plot(e, [v / 1e6 for v in s], "-", color=colours[c], label="%s /s" % rate)
-            for j, k in enumerate(parts):
-                e, s = curves[(path, rate, k)]
-                ax.plot(e, [v / 1e6 for v in s], styles[j % 3], color=colours[c])
+            for j, (sch, k) in enumerate(parts):
+                e, s = curves[(path, rate, sch, k)]
+                ax.plot(e, [v / 1e6 for v in s], linestyle=styles[j % len(styles)],
+                        color=colours[c])
         ax.set_title(PATH_WORDS[path], fontsize=10)
         e, s, _ = driven(path)
         sign = "-" if path == "confined" else ""
@@ -135,8 +142,8 @@ def main():
     # one legend for all panels, under them: colour = rate, line style = model
     handles = [plt.Line2D([], [], color=colours[c], label="%s /s" % r) for c, r in enumerate(rates)]
     handles.append(plt.Line2D([], [], color="k", ls="-", label="full field"))
-    handles += [plt.Line2D([], [], color="k", ls=styles[j % 3],
-                           label="reduced order, %d per phase" % k) for j, k in enumerate(parts)]
+    handles += [plt.Line2D([], [], color="k", ls=styles[j % len(styles)],
+                           label="%s, %d per phase" % p) for j, p in enumerate(parts)]
     fig.legend(handles=handles, loc="lower center", bbox_to_anchor=(0.5, 0.0),
                ncol=len(handles), fontsize=8, frameon=False)
     fig.get_layout_engine().set(rect=(0, 0.07, 1, 0.93))

@@ -2,8 +2,9 @@
 # Benchmark of the reduced-order cell (not a test): the one-off build of the
 # chapter's two-scale polyurea cell (cases/cells/polyurea-two-scale.toml,
 # 32^3) at 1 and 8 partitions per phase (2 and 16 partitions: solves, CG
-# iterations, seconds, peak memory), then one material-point step of each
-# entry against one full-field step of the same history on the same voxels
+# iterations, seconds, peak memory), in both schemes (tfa, clustering), then
+# one material-point step of each entry against one full-field step of the
+# same history on the same voxels
 # (homogenize_rom_bench: confined compression and shear at 2.6e3 /s to 0.3
 # in 60 steps, the full field on BENCH_THREADS threads).
 # Usage: bash bench/homogenize/reduced_order.sh [BUILD_DIR]
@@ -16,11 +17,15 @@ T="${BENCH_THREADS:-1}"
 LIB="$OUT/library.toml"
 rm -rf "$LIB" "$LIB.lock" "$OUT/library.side"
 echo "reduced-order bench: ${N}^3, full field on $T thread(s), $(bench_machine)"
-for k in 1 8; do
-  "$BIN" cases/cells/polyurea-two-scale.toml --resolution "$N" --library "$LIB" \
-    --name "rom-k$k" --reduced-order --partitions "$k" --quiet | grep -E "^(rom|solves|state)"
+for scheme in tfa clustering; do
+  for k in 1 8; do
+    "$BIN" cases/cells/polyurea-two-scale.toml --resolution "$N" --library "$LIB" \
+      --name "rom-$scheme-k$k" --reduced-order --partitions "$k" --scheme "$scheme" --quiet |
+      grep -E "^(rom|solves|state)"
+  done
 done
 for path in confined shear; do
-  "$BUILD/bin/homogenize_rom_bench" "$LIB" rom-k1,rom-k8 cases/cells/polyurea-two-scale.toml \
+  "$BUILD/bin/homogenize_rom_bench" "$LIB" rom-tfa-k1,rom-tfa-k8,rom-clustering-k1,rom-clustering-k8 \
+    cases/cells/polyurea-two-scale.toml \
     "$N" "$T" "$path" 2.6e3 0.3 60 3
 done

@@ -72,8 +72,7 @@ protected:
   void TearDown() override { fs::remove_all(dir_); }
 
   /// Runs `homogenize cell.toml --library lib.toml ARGS`: exit code, stderr.
-  std::pair<int, std::string> run(const std::vector<std::string>& args,
-                                  const fs::path& cell = {}) {
+  std::pair<int, std::string> run(const std::vector<std::string>& args, const fs::path& cell = {}) {
     std::vector<std::string> all{"homogenize",
                                  cell.empty() ? (dir_ / "cell.toml").string() : cell.string(),
                                  "--library", (dir_ / "lib.toml").string(), "--quiet"};
@@ -138,6 +137,17 @@ TEST_F(MalformedReducedOrder, PartitionOptionsOnlyWithReducedOrder) {
   std::tie(code, msg) = run({"--name", "x", "--reduced-order", "--partition-seed", "3"});
   EXPECT_EQ(code, kExitUsage) << msg;
   EXPECT_NE(msg.find("--partition-seed"), std::string::npos) << msg;
+  std::tie(code, msg) = run({"--name", "x", "--scheme", "clustering"});
+  EXPECT_EQ(code, kExitUsage) << msg;
+  EXPECT_NE(msg.find("--scheme"), std::string::npos) << msg;
+  expectUnchanged();
+}
+
+TEST_F(MalformedReducedOrder, UnknownSchemeIsAUsageError) {
+  const auto [code, msg] = run({"--name", "ro", "--reduced-order", "--scheme", "sca"});
+  EXPECT_EQ(code, kExitUsage) << msg;
+  EXPECT_NE(msg.find("--scheme"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("clustering"), std::string::npos) << msg; // the choices are named
   expectUnchanged();
 }
 
@@ -157,8 +167,7 @@ TEST_F(MalformedReducedOrder, NameMissingOrTaken) {
 // solve, naming the cell file and the phase.
 TEST_F(MalformedReducedOrder, CellWithOrientedYarnsIsRefused) {
   const fs::path cell = fs::path(LAMINA_SOURCE_DIR) / "cases/cells/plain-weave-ti.toml";
-  const auto [code, msg] =
-      run({"--name", "ro", "--reduced-order", "--resolution", "8"}, cell);
+  const auto [code, msg] = run({"--name", "ro", "--reduced-order", "--resolution", "8"}, cell);
   EXPECT_EQ(code, kExitUserError) << msg;
   EXPECT_NE(msg.find("plain-weave-ti.toml"), std::string::npos) << msg;
   EXPECT_NE(msg.find("follows its yarn's path"), std::string::npos) << msg;

@@ -86,4 +86,30 @@ inline void laminateReducedOrder(const std::vector<materials::Matrix6>& L,
     }
 }
 
+/// The clustering interaction tensors of that laminate (homogenize/
+/// cluster_interaction.hpp), one partition per layer, by hand: the
+/// indicator of a z-normal layer has transforms on the z axis only, where
+/// the unit wave vector is +-e_z, so G^(ab) = Gamma(e_z) (delta_ab - c_b)
+/// (the sum of conj(chi_a) chi_b over the nonzero modes is N^2 (c_a delta_ab
+/// - c_a c_b)), and in lamina order with engineering rows Gamma_a(e_z) =
+/// diag(0, 0, 1, 0, 1, 1) (zzzz, and yzyz, xzxz with the factor 4 of two
+/// shear indices over the 1/4), Gamma_b(e_z) = e_zz e_zz^T: the
+/// one-dimensional answers 1 / (lambda0 + 2 mu0) for tau_zz and 1 / mu0 for
+/// a transverse shear.
+inline void laminateInteractions(const std::vector<double>& c, std::vector<materials::Matrix6>& Ga,
+                                 std::vector<materials::Matrix6>& Gb) {
+  const std::size_t layers = c.size();
+  materials::Matrix6 a = materials::Matrix6::Zero(), b = materials::Matrix6::Zero();
+  a(2, 2) = a(4, 4) = a(5, 5) = 1;
+  b(2, 2) = 1;
+  Ga.assign(layers * layers, materials::Matrix6::Zero());
+  Gb.assign(layers * layers, materials::Matrix6::Zero());
+  for (std::size_t I = 0; I < layers; ++I)
+    for (std::size_t J = 0; J < layers; ++J) {
+      const double w = (I == J ? 1.0 : 0.0) - c[J];
+      Ga[I * layers + J] = w * a;
+      Gb[I * layers + J] = w * b;
+    }
+}
+
 } // namespace lamina::test

@@ -103,6 +103,14 @@ inline materials::ReducedOrderModel polyureaLaminate(bool synthetic_micro_inerti
   return laminateCell({softGvbo(), hardElastic()}, {0, 1}, {0.81, 0.19}, synthetic_micro_inertia);
 }
 
+/// @p m (a laminate of laminateCell) with the clustering scheme: the
+/// interaction tensors of its layers (laminateInteractions).
+inline materials::ReducedOrderModel clustering(materials::ReducedOrderModel m) {
+  m.scheme = materials::ReducedOrderScheme::Clustering;
+  laminateInteractions(m.fraction, m.Ga, m.Gb);
+  return m;
+}
+
 /// Drives @p law from its initial state along eps = E i / @p steps (i = 1..steps,
 /// small strain: J = 1 + tr eps), @p dt per step, into @p state; @return the final strain.
 inline Vec6 loadAlong(const materials::ConstitutiveLaw& law, const Vec6& E, int steps, double dt,

@@ -3,9 +3,9 @@
 /// arrays round-trip bit for bit, a malformed file is refused naming the file
 /// and the dataset, and the checksum sees a change of one byte.
 
+#include "core/hdf5_file.hpp"
 #include "laminate_reduced_order.hpp"
 #include "materials/reduced_order.hpp"
-#include "core/hdf5_file.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -60,6 +60,42 @@ TEST(ReducedOrderFile, ArraysRoundTripBitForBit) {
   EXPECT_EQ(r.D_lin, m.D_lin);
   EXPECT_EQ(r.C, m.C);
   EXPECT_EQ(r.density, m.density);
+}
+
+// A clustering cell adds its interaction tensors and scheme (format 2).
+TEST(ReducedOrderFile, ClusteringArraysRoundTripBitForBit) {
+  test::TempDir dir;
+  materials::ReducedOrderModel m = laminateModel();
+  m.scheme = materials::ReducedOrderScheme::Clustering;
+  test::laminateInteractions(m.fraction, m.Ga, m.Gb);
+  const auto path = dir.path() / "cell.h5";
+  materials::writeReducedOrderArrays(path, m);
+  materials::ReducedOrderModel r;
+  r.phases = m.phases;
+  materials::readReducedOrderArrays(path, r);
+  EXPECT_EQ(r.scheme, materials::ReducedOrderScheme::Clustering);
+  ASSERT_EQ(r.Ga.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(r.Ga[k], m.Ga[k]);
+    EXPECT_EQ(r.Gb[k], m.Gb[k]);
+  }
+  EXPECT_EQ(r.P[1], m.P[1]);
+  // without its interaction tensors the file is refused, naming the dataset
+  {
+    core::H5File f(path, core::H5File::Mode::ReadWrite);
+    f.remove("/Gb");
+  }
+  const std::string msg = test::errorOf([&] {
+    materials::ReducedOrderModel bad;
+    bad.phases = m.phases;
+    materials::readReducedOrderArrays(path, bad);
+  });
+  EXPECT_NE(msg.find("/Gb"), std::string::npos) << msg;
+  // and a transformation model read back has none
+  materials::writeReducedOrderArrays(path, laminateModel());
+  materials::readReducedOrderArrays(path, r);
+  EXPECT_EQ(r.scheme, materials::ReducedOrderScheme::Transformation);
+  EXPECT_TRUE(r.Ga.empty());
 }
 
 TEST(ReducedOrderFile, ChecksumSeesOneChangedByte) {
