@@ -15,6 +15,9 @@ namespace {
 
 using materials::Matrix6;
 
+/// blocks of Fourier modes summed apart (thread-count-free sums)
+constexpr int kBlocks = 8;
+
 /// (i, j) of lamina-order component c: xx, yy, zz, xy, yz, xz
 constexpr int kPair[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
 
@@ -63,6 +66,46 @@ indicatorSpectra(const Grid& grid, const std::vector<std::int32_t>& label, std::
   return chi;
 }
 
+/// Adds to @p sa, @p sb (one per pair I <= J) the symbols of the modes
+/// [@p first, @p last) of @p grid weighted by the pair products of the
+/// indicator spectra @p chi (mode-major, @p n per mode).
+void accumulateModes(const Grid& grid, const std::vector<std::complex<double>>& chi, std::size_t n,
+                     long first, long last, std::vector<Matrix6>& sa, std::vector<Matrix6>& sb) {
+  const int n1 = grid.n[1], n2 = grid.n[2], m2 = n2 / 2 + 1;
+  const double h0 = grid.h[0], h1 = grid.h[1], h2 = grid.h[2];
+  // |q|^2 below this is a zero of q (cos(pi/2) is 6e-17, not 0)
+  const double zero2 = 1e-20 * 4.0 * (1 / (h0 * h0) + 1 / (h1 * h1) + 1 / (h2 * h2));
+  Matrix6 Ga, Gb;
+  for (long mi = first; mi < last; ++mi) {
+    const std::size_t m = static_cast<std::size_t>(mi);
+    const int k = static_cast<int>(m % static_cast<std::size_t>(m2));
+    const int j =
+        static_cast<int>((m / static_cast<std::size_t>(m2)) % static_cast<std::size_t>(n1));
+    const int i =
+        static_cast<int>(m / (static_cast<std::size_t>(m2) * static_cast<std::size_t>(n1)));
+    const double x0 = M_PI * i / grid.n[0], x1 = M_PI * j / n1, x2 = M_PI * k / n2;
+    const double s0 = std::sin(x0), c0 = std::cos(x0), s1 = std::sin(x1), c1 = std::cos(x1),
+                 s2 = std::sin(x2), c2 = std::cos(x2);
+    const double q[3] = {2 * s0 * c1 * c2 / h0, 2 * c0 * s1 * c2 / h1, 2 * c0 * c1 * s2 / h2};
+    const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
+    if (qq <= zero2)
+      continue; // the mean and the hourglass modes carry no strain
+    const double r = 1 / std::sqrt(qq);
+    const double nv[3] = {q[0] * r, q[1] * r, q[2] * r};
+    symbols(nv, Ga, Gb);
+    // the modes 0 < k < n2/2 stand for themselves and their conjugates
+    const double w = (k == 0 || 2 * k == n2) ? 1.0 : 2.0;
+    const std::complex<double>* z = &chi[m * n];
+    std::size_t p = 0;
+    for (std::size_t I = 0; I < n; ++I)
+      for (std::size_t J = I; J < n; ++J, ++p) {
+        const double c = w * (z[I].real() * z[J].real() + z[I].imag() * z[J].imag());
+        sa[p].noalias() += c * Ga;
+        sb[p].noalias() += c * Gb;
+      }
+  }
+}
+
 } // namespace
 
 ClusterInteraction clusterInteraction(const Grid& grid, const std::vector<std::int32_t>& label,
@@ -70,57 +113,37 @@ ClusterInteraction clusterInteraction(const Grid& grid, const std::vector<std::i
   const std::size_t N = grid.size(), Nc = grid.complexSize(), n = voxels.size();
   LAMINA_CHECK(label.size() == N, "cluster interaction: ", label.size(), " labels for ", N,
                " voxels");
+  std::vector<std::size_t> count(n, 0);
+  for (std::int32_t l : label) {
+    LAMINA_CHECK(l >= 0 && static_cast<std::size_t>(l) < n, "cluster interaction: label ", l,
+                 " outside the ", n, " partitions");
+    ++count[static_cast<std::size_t>(l)];
+  }
   for (std::size_t I = 0; I < n; ++I)
-    LAMINA_CHECK(voxels[I] > 0, "cluster interaction: partition ", I, " has no voxels");
+    LAMINA_CHECK(voxels[I] > 0 && voxels[I] == count[I], "cluster interaction: partition ", I,
+                 " is said to have ", voxels[I], " voxels but has ", count[I]);
   // 1. the half spectrum of every partition's indicator
   const std::vector<std::complex<double>> chi = indicatorSpectra(grid, label, n);
   // 2. per mode the symbols, summed over pairs I <= J (the pair sum is
   // symmetric in I, J)
   const std::size_t pairs = n * (n + 1) / 2;
-  const int n1 = grid.n[1], n2 = grid.n[2], m2 = n2 / 2 + 1;
-  const double h0 = grid.h[0], h1 = grid.h[1], h2 = grid.h[2];
-  const double zero2 = 1e-20 * 4.0 * (1 / (h0 * h0) + 1 / (h1 * h1) + 1 / (h2 * h2));
-  std::vector<Matrix6> SA(pairs, Matrix6::Zero()), SB(pairs, Matrix6::Zero());
+  // in kBlocks fixed blocks of modes, each summed on its own and the blocks
+  // added in order: the same sums with any number of threads
   const long modes = static_cast<long>(Nc);
-#pragma omp parallel num_threads(threads > 0 ? threads : omp_get_max_threads())
-  {
-    std::vector<Matrix6> sa(pairs, Matrix6::Zero()), sb(pairs, Matrix6::Zero());
-    Matrix6 Ga, Gb;
-#pragma omp for schedule(static)
-    for (long mi = 0; mi < modes; ++mi) {
-      const std::size_t m = static_cast<std::size_t>(mi);
-      const int k = static_cast<int>(m % static_cast<std::size_t>(m2));
-      const int j =
-          static_cast<int>((m / static_cast<std::size_t>(m2)) % static_cast<std::size_t>(n1));
-      const int i =
-          static_cast<int>(m / (static_cast<std::size_t>(m2) * static_cast<std::size_t>(n1)));
-      const double x0 = M_PI * i / grid.n[0], x1 = M_PI * j / n1, x2 = M_PI * k / n2;
-      const double s0 = std::sin(x0), c0 = std::cos(x0), s1 = std::sin(x1), c1 = std::cos(x1),
-                   s2 = std::sin(x2), c2 = std::cos(x2);
-      const double q[3] = {2 * s0 * c1 * c2 / h0, 2 * c0 * s1 * c2 / h1, 2 * c0 * c1 * s2 / h2};
-      const double qq = q[0] * q[0] + q[1] * q[1] + q[2] * q[2];
-      if (qq <= zero2)
-        continue; // the mean and the hourglass modes carry no strain
-      const double r = 1 / std::sqrt(qq);
-      const double nv[3] = {q[0] * r, q[1] * r, q[2] * r};
-      symbols(nv, Ga, Gb);
-      // the modes 0 < k < n2/2 stand for themselves and their conjugates
-      const double w = (k == 0 || 2 * k == n2) ? 1.0 : 2.0;
-      const std::complex<double>* z = &chi[m * n];
-      std::size_t p = 0;
-      for (std::size_t I = 0; I < n; ++I)
-        for (std::size_t J = I; J < n; ++J, ++p) {
-          const double c = w * (z[I].real() * z[J].real() + z[I].imag() * z[J].imag());
-          sa[p].noalias() += c * Ga;
-          sb[p].noalias() += c * Gb;
-        }
-    }
-#pragma omp critical
-    for (std::size_t p = 0; p < pairs; ++p) {
-      SA[p] += sa[p];
-      SB[p] += sb[p];
-    }
+  std::vector<std::vector<Matrix6>> SA(kBlocks), SB(kBlocks);
+#pragma omp parallel for schedule(static, 1)                                                       \
+    num_threads(threads > 0 ? threads : omp_get_max_threads())
+  for (int block = 0; block < kBlocks; ++block) {
+    SA[static_cast<std::size_t>(block)].assign(pairs, Matrix6::Zero());
+    SB[static_cast<std::size_t>(block)].assign(pairs, Matrix6::Zero());
+    accumulateModes(grid, chi, n, modes * block / kBlocks, modes * (block + 1) / kBlocks,
+                    SA[static_cast<std::size_t>(block)], SB[static_cast<std::size_t>(block)]);
   }
+  for (int block = 1; block < kBlocks; ++block)
+    for (std::size_t p = 0; p < pairs; ++p) {
+      SA[0][p] += SA[static_cast<std::size_t>(block)][p];
+      SB[0][p] += SB[static_cast<std::size_t>(block)][p];
+    }
   // 3. normalized per row partition: 1 / (N_I N)
   ClusterInteraction res;
   res.Ga.assign(n * n, Matrix6::Zero());
@@ -131,10 +154,10 @@ ClusterInteraction clusterInteraction(const Grid& grid, const std::vector<std::i
       const double dN = static_cast<double>(N);
       const double sI = 1 / (static_cast<double>(voxels[I]) * dN);
       const double sJ = 1 / (static_cast<double>(voxels[J]) * dN);
-      res.Ga[I * n + J] = sI * SA[p];
-      res.Gb[I * n + J] = sI * SB[p];
-      res.Ga[J * n + I] = sJ * SA[p];
-      res.Gb[J * n + I] = sJ * SB[p];
+      res.Ga[I * n + J] = sI * SA[0][p];
+      res.Gb[I * n + J] = sI * SB[0][p];
+      res.Ga[J * n + I] = sJ * SA[0][p];
+      res.Gb[J * n + I] = sJ * SB[0][p];
     }
   return res;
 }

@@ -186,6 +186,11 @@ void readReducedOrderArrays(const std::filesystem::path& path, ReducedOrderModel
       scheme = "(missing)";
     }
     m.scheme = reducedOrderSchemeFrom(scheme, path.string() + ": attribute 'scheme'");
+    LAMINA_CHECK(m.scheme == ReducedOrderScheme::Clustering, path.string(), ": format '",
+                 kFormatClustering,
+                 "' is a clustering cell, but its attribute "
+                 "'scheme' is '",
+                 scheme, "'");
   }
   Dims dims;
   m.partition_phase = f.readInts("/partition_phase", dims);

@@ -405,6 +405,9 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
     // the step in the reference medium fitted at the end of the last one;
     // the fit to this step's answer is the next step's
     mu0 = state_n[reference_offset_];
+    if (!(std::isfinite(mu0) && mu0 > 0))
+      fail(detail::concat("the state's reference shear modulus is ", mu0,
+                          " (not positive): a state not set by initState()?"));
     const Reference ref(model_, lameOf(mu0));
     solveStrains(step, state_n, &ref, t, iterations, norm);
     next = stepReference(t, step.eps, mu0);
@@ -456,9 +459,11 @@ double ReducedOrderLaw::residual(const Vector6& eps_c, const Reference* ref, con
         term += model_.P[uz(b * n + unknown_[l])] * t.mu[l];
       r.segment<6>(6 * idx(k)) = t.eps[k] - model_.A[uz(b)] * eps_c - term;
     }
-    // the size of the terms r sums: its round-off is relative to them
-    scale = std::max({scale, t.eps[k].cwiseAbs().maxCoeff(), t.mu[k].cwiseAbs().maxCoeff(),
-                      term.cwiseAbs().maxCoeff()});
+    // the size of the terms r sums: its round-off is relative to them (in
+    // clustering the polarization term, whose parts cancel, is one of them)
+    scale = std::max({scale, t.eps[k].cwiseAbs().maxCoeff(), t.mu[k].cwiseAbs().maxCoeff()});
+    if (ref)
+      scale = std::max(scale, term.cwiseAbs().maxCoeff());
   }
   // clustering: every partition is an unknown, and a nonlinear law's stress
   // carries its own tolerances, absolute at some level (GVBO: its overstress

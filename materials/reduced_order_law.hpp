@@ -114,8 +114,10 @@
 /// medium instead of the elastic one (the transformation scheme's frozen
 /// influence functions, or a reference fitted to the consistent tangent,
 /// which stays near the instantaneous stiffness in the short steps of a
-/// viscous law: both measured 3-10x further from the full-field cell than
-/// this choice, docs/homogenize-nonlinear.md). Its bulk modulus kappa0 is
+/// viscous law: both 3-13 times further from the full-field cell than this
+/// choice where the soft domains flow, docs/homogenize-nonlinear.md; in
+/// shear at 1e5 /s, where they barely flow, the transformation scheme is
+/// the closer, 2.5 % against 3.6 %). Its bulk modulus kappa0 is
 /// fixed: the bulk modulus of the isotropic part (C_iijj / 9) of the cell's
 /// tangent at rest in that medium, iterated to a fixed point once (taking it
 /// from the current tangent instead changed the study's figures by less
@@ -137,8 +139,9 @@
 ///
 /// **Linear cells.** When every partition's law is linear the cell is linear
 /// elasticity: isLinear() is true, stateSize() is 0 (the partition strains
-/// A^(alpha) eps are not stored) and sigma = (sum c L A) eps exactly, so
-/// solvers keep their fast path.
+/// A^(alpha) eps are not stored) and sigma = C eps exactly, so solvers keep
+/// their fast path: C = sum c L A in the transformation scheme, the
+/// clustering estimate at rest in the other (referenceTangent).
 
 #include "materials/law.hpp"
 #include "materials/reduced_order.hpp"
@@ -189,7 +192,8 @@ public:
   void initState(double* state) const override;
   /// The instantaneous coarse tangent at J: every partition at J with its
   /// law's elasticStiffness(J) as T, through the reduced system; at J = 1
-  /// (T = L0, d mu = 0) exactly sum c L0 A.
+  /// (T = L0, d mu = 0) exactly sum c L0 A in the transformation scheme (in
+  /// clustering, its estimate in the reference medium at rest).
   Stiffness elasticStiffness(double J = 1.0) const override;
   /// One step (file comment); throws lamina::Error naming the entry, the
   /// Newton residual and the iterations when the Newton does not converge.
@@ -203,7 +207,7 @@ public:
   /// another nonlinear law's that of a zero step (eps = eps_n, dt = 0) from
   /// its state; a linear partition's W is eps^(alpha) . L eps^(alpha) / 2 of
   /// the strain in the state. The coarse @p sigma is not used then. A linear
-  /// cell (no state): sigma . C^-1 sigma / 2 with C = sum c L A, the energy
+  /// cell (no state): sigma . C^-1 sigma / 2 with C its stiffness, the energy
   /// its stress returns on unloading (for the exact laminate the partition
   /// sum too, by Hill's lemma).
   double storedEnergy(const Vector6& sigma, const double* state, double J) const override;

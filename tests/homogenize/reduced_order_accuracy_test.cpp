@@ -10,10 +10,10 @@
 /// |sigma_ff| of the driven component over the steps where |sigma_ff|
 /// exceeds 5 % of its peak. The bound is the two-scale model's target for
 /// one partition per phase, 5 %, which the clustering scheme meets here
-/// with one and with eight partitions per phase (measured 3.5 % and 3.4-4.0
-/// %; at 32^3 and 60 steps the study gives 2.8-4.1 % and 2.2-2.6 %: the
-/// target of 2 % with eight per phase is not met, docs/homogenize-
-/// nonlinear.md). The transformation scheme's figure at one partition per
+/// with one and with eight partitions per phase (measured 3.1-3.3 % and
+/// 3.1-3.7 %; at 32^3 and 60 steps the study gives 2.8-4.3 % and 2.2-2.8 %:
+/// the target of 2 % with eight per phase is not met,
+/// docs/homogenize-nonlinear.md). The transformation scheme's figure at one partition per
 /// phase is asserted to exceed 20 % (measured 54 %), the stiffness its
 /// documentation explains: the two schemes are not the same model.
 

@@ -62,10 +62,9 @@ TEST(ReducedOrderTangent, MatchesCentralDifferencesOfUpdate) {
       mat::ReducedOrderLaw("polyurea-laminate", test::polyureaLaminate(), {1e-14, 25}));
 }
 
-// The clustering scheme's tangent holds its reference medium fixed, while
-// update() refits it to every strain: on a laminate the answer does not
-// depend on the reference medium (exact for any), so the two must still
-// agree, to the same bound.
+// The clustering scheme: a step runs in the reference medium of the state
+// (fitted at the end of the step before), so within the step the tangent
+// is the exact derivative of update(), to the same bound.
 TEST(ReducedOrderTangent, ClusteringMatchesCentralDifferencesOfUpdate) {
   expectConsistentTangent(mat::ReducedOrderLaw(
       "polyurea-laminate", test::clustering(test::polyureaLaminate()), {1e-14, 25}));
