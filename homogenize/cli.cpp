@@ -237,7 +237,7 @@ void addReducedOrderOptions(CLI::App& app, Cli& cli, CliNames& names) {
                      "analysis, the chapter's eqs. 22-34) or clustering (clustering analysis in a "
                      "reference medium that follows the softest "
                      "phase as it flows)")
-          ->check(CLI::IsMember({"tfa", "clustering"}));
+          ->check(CLI::IsMember(lamina::materials::kReducedOrderSchemeNames.names()));
 }
 
 /// @return the value of @p name in @p choices (a core::EnumNames; @p name
@@ -320,7 +320,7 @@ lamina::homogenize::ReducedOrderOptions reducedOrderOptions(const Cli& cli, cons
     opt.partitions.per_phase = cli.partitions;
     opt.partitions.seed = static_cast<std::uint64_t>(cli.partition_seed);
   }
-  opt.scheme = lamina::materials::reducedOrderSchemeFrom(names.scheme, "--scheme");
+  opt.scheme = valueOf(lamina::materials::kReducedOrderSchemeNames, names.scheme);
   return opt;
 }
 

@@ -79,16 +79,7 @@ Eigen::MatrixXd matrix(const std::vector<double>& v, Eigen::Index rows, Eigen::I
 } // namespace
 
 const char* toString(ReducedOrderScheme scheme) {
-  return scheme == ReducedOrderScheme::Clustering ? "clustering" : "tfa";
-}
-
-ReducedOrderScheme reducedOrderSchemeFrom(const std::string& name, const std::string& where) {
-  if (name == "tfa")
-    return ReducedOrderScheme::Transformation;
-  if (name == "clustering")
-    return ReducedOrderScheme::Clustering;
-  throw Error(where + ": unknown reduced-order scheme '" + name +
-              "' (tfa: transformation-field analysis, clustering: clustering analysis)");
+  return kReducedOrderSchemeNames.name(scheme).data(); // literals: NUL-terminated
 }
 
 std::vector<int> ReducedOrderModel::partitionsPerPhase() const {
@@ -185,12 +176,13 @@ void readReducedOrderArrays(const std::filesystem::path& path, ReducedOrderModel
     } catch (const Error&) {
       scheme = "(missing)";
     }
-    m.scheme = reducedOrderSchemeFrom(scheme, path.string() + ": attribute 'scheme'");
-    LAMINA_CHECK(m.scheme == ReducedOrderScheme::Clustering, path.string(), ": format '",
-                 kFormatClustering,
-                 "' is a clustering cell, but its attribute "
-                 "'scheme' is '",
+    // format 2 is a clustering cell, and its attribute says so
+    LAMINA_CHECK(kReducedOrderSchemeNames.parse(scheme) == ReducedOrderScheme::Clustering,
+                 path.string(), ": format '", kFormatClustering,
+                 "' is a clustering cell, but its "
+                 "attribute 'scheme' is '",
                  scheme, "'");
+    m.scheme = ReducedOrderScheme::Clustering;
   }
   Dims dims;
   m.partition_phase = f.readInts("/partition_phase", dims);

@@ -31,6 +31,7 @@
 /// in (0, 1] and the fractions sum to 1 (1e-12); all numbers finite; the
 /// sizes match n.
 #include "core/checksum.hpp"
+#include "core/enum_names.hpp"
 #include "materials/law_spec.hpp"
 #include "materials/stiffness.hpp"
 
@@ -55,12 +56,13 @@ enum class ReducedOrderScheme {
   Clustering
 };
 
-/// @return "tfa" or "clustering", the scheme's name on the command line and in files
-const char* toString(ReducedOrderScheme scheme);
+/// The names of ReducedOrderScheme on the command line (`homogenize
+/// --scheme`) and in side files.
+inline constexpr auto kReducedOrderSchemeNames = core::enumNames<ReducedOrderScheme>(
+    {{"tfa", ReducedOrderScheme::Transformation}, {"clustering", ReducedOrderScheme::Clustering}});
 
-/// @return the scheme named @p name ("tfa", "clustering"); throws lamina::Error
-/// naming @p where and the two names otherwise
-ReducedOrderScheme reducedOrderSchemeFrom(const std::string& name, const std::string& where);
+/// @return "tfa" or "clustering" (kReducedOrderSchemeNames)
+const char* toString(ReducedOrderScheme scheme);
 
 /// One phase of the cell: its name in the cell file and its law.
 struct ReducedOrderPhase {

@@ -80,16 +80,15 @@ constexpr double kShearFloor = 1e-3;
 /// this (ReducedOrderLaw::residual)
 constexpr double kStrainFloor = 1e-14;
 
-/// The isotropic part (lambda, mu) of a 6x6 stiffness (lamina order,
-/// engineering shear): 3 kappa = C_iijj / 3, 2 mu = (C_ijij - C_iijj / 3) / 5.
-std::array<double, 2> isotropicPart(const Matrix6& C) {
+/// @return the shear modulus of the isotropic part of a 6x6 stiffness
+/// (lamina order, engineering shear): 2 mu = (C_ijij - C_iijj / 3) / 5
+double isotropicShear(const Matrix6& C) {
   const double iijj = C.topLeftCorner<3, 3>().sum();
   const double ijij = C.diagonal().head<3>().sum() + 2 * C.diagonal().tail<3>().sum();
-  const double mu = (ijij - iijj / 3) / 10;
-  return {iijj / 9 - 2 * mu / 3, mu};
+  return (ijij - iijj / 3) / 10;
 }
 
-/// @return the bulk modulus of the isotropic part of @p C
+/// @return the bulk modulus of the isotropic part of @p C: 3 kappa = C_iijj / 3
 double bulkOf(const Matrix6& C) {
   return C.topLeftCorner<3, 3>().sum() / 9;
 }
@@ -177,19 +176,17 @@ void ReducedOrderLaw::prepareCoupling() {
     // any use
     mu_rest_ = softestShear(L0_);
     kappa0_ = bulkOf(model_.C);
-    Matrix6 C;
     for (int solve = 0; solve < 200; ++solve) {
-      C = referenceTangent(L0_, mu_rest_);
-      const double fit = bulkOf(C);
+      const double fit = bulkOf(referenceTangent(L0_, mu_rest_));
+      if (!(std::isfinite(fit) && fit > 0))
+        break;
       const bool held = std::abs(fit - kappa0_) <= 1e-12 * kappa0_;
-      if (std::isfinite(fit) && fit > 0)
-        kappa0_ = fit;
-      if (held || !(std::isfinite(fit) && fit > 0))
+      kappa0_ = fit;
+      if (held)
         break;
     }
-    C = referenceTangent(L0_, mu_rest_);
-    if (nonlinear_.empty())
-      C_linear_ = C;
+    if (nonlinear_.empty()) // a linear cell: its stiffness in the converged medium
+      C_linear_ = referenceTangent(L0_, mu_rest_);
   } else {
     for (int e : linear_)
       C_linear_ += model_.fraction[uz(e)] * L0_[uz(e)] * model_.A[uz(e)];
@@ -324,7 +321,7 @@ std::array<double, 2> ReducedOrderLaw::lameOf(double mu0) const {
 double ReducedOrderLaw::softestShear(const std::vector<Matrix6>& T) const {
   double mu = std::numeric_limits<double>::infinity();
   for (const Matrix6& Tk : T) // every phase has partitions
-    mu = std::min(mu, isotropicPart(Tk)[1]);
+    mu = std::min(mu, isotropicShear(Tk));
   return mu;
 }
 
@@ -386,7 +383,7 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
     if (tangent)
       *tangent = C_linear_;
     if (info)
-      *info = {0, 0.0, Eigen::MatrixXd(0, 6), lameOf(mu_rest_)[0], mu_rest_};
+      *info = {0, 0.0, Eigen::MatrixXd(0, 6)};
     return;
   }
   Trial t(m, trial_state_size_);
@@ -399,12 +396,12 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
   int iterations = 0;
   double norm = 0;
   Eigen::MatrixXd deps, dmu;
-  double mu0 = 0, next = 0; // clustering: the reference used, and the next step's
+  double next = 0; // clustering: the next step's reference shear modulus
   Matrix6 C_T;
   if (clustering_) {
     // the step in the reference medium fitted at the end of the last one;
     // the fit to this step's answer is the next step's
-    mu0 = state_n[reference_offset_];
+    const double mu0 = state_n[reference_offset_];
     if (!(std::isfinite(mu0) && mu0 > 0))
       fail(detail::concat("the state's reference shear modulus is ", mu0,
                           " (not positive): a state not set by initState()?"));
@@ -432,7 +429,7 @@ void ReducedOrderLaw::updateWithInfo(const PointStep& step, const double* state_
   if (tangent)
     *tangent = C_T;
   if (info)
-    *info = {iterations, norm, std::move(dmu), clustering_ ? lameOf(mu0)[0] : 0.0, mu0};
+    *info = {iterations, norm, std::move(dmu)};
   accept(step, t, state); // every read of state_n is done (state may alias it)
   if (clustering_)
     state[reference_offset_] = next;
@@ -479,7 +476,6 @@ void ReducedOrderLaw::solveStrains(const PointStep& step, const double* state_n,
   const std::size_t m = unknown_.size();
   Eigen::VectorXd r(6 * idx(m));
   double last_norm = 0;
-  int here = 0;
   // Newton with the Jacobian kept while it works: the partition tangents
   // leave out the moduli's change with J, so the iteration converges
   // linearly anyway where that matters; a Jacobian is formed and factored
@@ -491,18 +487,17 @@ void ReducedOrderLaw::solveStrains(const PointStep& step, const double* state_n,
     norm = r.lpNorm<Eigen::Infinity>();
     if (norm <= options_.tolerance * scale)
       return;
-    if (here == options_.max_iterations || !std::isfinite(norm))
+    if (iterations == options_.max_iterations || !std::isfinite(norm))
       fail(detail::concat("the Newton iteration of the partition strains did not converge: "
                           "residual ",
-                          norm, " after ", here, " iterations (tolerance ", options_.tolerance,
-                          " x ", scale, ")"));
-    if (here == 0 || norm > 0.25 * last_norm)
+                          norm, " after ", iterations, " iterations (tolerance ",
+                          options_.tolerance, " x ", scale, ")"));
+    if (iterations == 0 || norm > 0.25 * last_norm)
       lu.compute(jacobian(t.T, ref));
     last_norm = norm;
     const Eigen::VectorXd dx = lu.solve(r);
     for (std::size_t k = 0; k < m; ++k)
       t.eps[k] -= dx.segment<6>(6 * idx(k));
-    ++here;
     ++iterations;
   }
 }

@@ -173,7 +173,6 @@ struct ReducedOrderStepInfo {
   /// d(d mu)/d(d eps^c) of the nonlinear partitions, stacked in the order of
   /// ReducedOrderLaw::nonlinearPartitions() (6m x 6, engineering strain)
   Eigen::MatrixXd dmu_deps;
-  double lambda0 = 0, mu0 = 0; ///< clustering: the reference medium used
 };
 
 /// A reduced-order cell at a material point (see the file comment).

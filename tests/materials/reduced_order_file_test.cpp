@@ -6,11 +6,13 @@
 #include "core/hdf5_file.hpp"
 #include "laminate_reduced_order.hpp"
 #include "materials/reduced_order.hpp"
+#include "reduced_order_cells.hpp"
 #include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 
 namespace lamina {
 namespace {
@@ -65,9 +67,7 @@ TEST(ReducedOrderFile, ArraysRoundTripBitForBit) {
 // A clustering cell adds its interaction tensors and scheme (format 2).
 TEST(ReducedOrderFile, ClusteringArraysRoundTripBitForBit) {
   test::TempDir dir;
-  materials::ReducedOrderModel m = laminateModel();
-  m.scheme = materials::ReducedOrderScheme::Clustering;
-  test::laminateInteractions(m.fraction, m.Ga, m.Gb);
+  const materials::ReducedOrderModel m = test::clustering(laminateModel());
   const auto path = dir.path() / "cell.h5";
   materials::writeReducedOrderArrays(path, m);
   materials::ReducedOrderModel r;
@@ -96,6 +96,39 @@ TEST(ReducedOrderFile, ClusteringArraysRoundTripBitForBit) {
   materials::readReducedOrderArrays(path, r);
   EXPECT_EQ(r.scheme, materials::ReducedOrderScheme::Transformation);
   EXPECT_TRUE(r.Ga.empty());
+}
+
+// A clustering file whose attribute 'scheme' is not "clustering", or whose
+// interaction tensors hold a NaN, is refused naming the file and what is wrong.
+TEST(ReducedOrderFile, ClusteringFileWithAWrongSchemeOrANaNIsRefused) {
+  test::TempDir dir;
+  const materials::ReducedOrderModel m = test::clustering(laminateModel());
+  const auto path = dir.path() / "cell.h5";
+  const auto readBack = [&] {
+    return test::errorOf([&] {
+      materials::ReducedOrderModel r;
+      r.phases = m.phases;
+      materials::readReducedOrderArrays(path, r);
+    });
+  };
+  for (const char* scheme : {"tfa", "sca", ""}) {
+    materials::writeReducedOrderArrays(path, m);
+    core::H5File(path, core::H5File::Mode::ReadWrite).writeAttribute("/", "scheme", scheme);
+    const std::string msg = readBack();
+    EXPECT_NE(msg.find("cell.h5"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("'scheme'"), std::string::npos) << msg;
+  }
+  materials::writeReducedOrderArrays(path, m);
+  {
+    core::H5File f(path, core::H5File::Mode::ReadWrite);
+    std::vector<double> ga(4 * 36, 0.0);
+    ga[7] = std::numeric_limits<double>::quiet_NaN();
+    f.remove("/Ga");
+    f.writeDoubles("/Ga", ga.data(), {2, 2, 6, 6});
+  }
+  const std::string msg = readBack();
+  EXPECT_NE(msg.find("cell.h5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("Ga or Gb"), std::string::npos) << msg;
 }
 
 TEST(ReducedOrderFile, ChecksumSeesOneChangedByte) {
