@@ -8,6 +8,7 @@
 #include <Eigen/CholmodSupport>
 #endif
 
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 
@@ -18,12 +19,42 @@ namespace {
 /// turns every barrier into a scheduler time slice).
 constexpr int kParallelMin = 30000;
 
+/// Where the CG finds a node's preconditioner block P.
+enum class Blocks {
+  Shared,  ///< one 3x3 block, row-major, for every node of a run of shared rows
+  PerNode, ///< 9 numbers per node from node 0 (row-major 3x3)
+  Split    ///< 5 numbers per node: the in-plane 2x2 block row-major, then P(2,2)
+};
+
+/// z = P r for the node's block @p m in the layout @p L. Split blocks skip
+/// the exact zeros of the coupling terms (the same numbers).
+template <Blocks L>
+inline void applyBlock(const double* m, double r0, double r1, double r2, double& z0, double& z1,
+                       double& z2) {
+  if constexpr (L == Blocks::Split) {
+    z0 = m[0] * r0 + m[1] * r1;
+    z1 = m[2] * r0 + m[3] * r1;
+    z2 = m[4] * r2;
+  } else {
+    z0 = m[0] * r0 + m[1] * r1 + m[2] * r2;
+    z1 = m[3] * r0 + m[4] * r1 + m[5] * r2;
+    z2 = m[6] * r0 + m[7] * r1 + m[8] * r2;
+  }
+}
+
+/// @return the block of node @p i (Blocks::Shared: @p P itself)
+template <Blocks L>
+inline const double* blockOf(const double* P, int i) {
+  if constexpr (L == Blocks::Shared)
+    return P;
+  return P + (L == Blocks::Split ? 5 : 9) * static_cast<std::ptrdiff_t>(i);
+}
+
 /// The CG vector updates on nodes [i0, i1) of planar vectors (plane stride
-/// n). P: the 3x3 preconditioner block, row-major, the same for all nodes
-/// (a run of shared rows) or, with PerNode, 9 numbers per node from node 0.
+/// n), with the preconditioner blocks P in the layout L.
 /// update: x += alpha p, r -= alpha q, z = P r; adds z.r to rz and r.r to rr.
 /// direction: p = P r + beta p (p = P r when beta = 0); adds z.r, r.r the same way.
-template <bool PerNode>
+template <Blocks L>
 LAMINA_VECTOR_CLONES void updateNodes(const double* P, int n, double alpha, double* __restrict x,
                                       double* __restrict r, const double* __restrict p,
                                       const double* __restrict q, int i0, int i1, double& rz,
@@ -32,7 +63,7 @@ LAMINA_VECTOR_CLONES void updateNodes(const double* P, int n, double alpha, doub
   double s = 0, t = 0;
 #pragma omp simd reduction(+ : s, t)
   for (int i = i0; i < i1; ++i) {
-    const double* m = PerNode ? P + 9 * static_cast<std::ptrdiff_t>(i) : P;
+    const double* m = blockOf<L>(P, i);
     x[i] += alpha * p[i];
     x[n1 + i] += alpha * p[n1 + i];
     x[n2 + i] += alpha * p[n2 + i];
@@ -42,9 +73,8 @@ LAMINA_VECTOR_CLONES void updateNodes(const double* P, int n, double alpha, doub
     r[i] = r0;
     r[n1 + i] = r1;
     r[n2 + i] = r2;
-    const double z0 = m[0] * r0 + m[1] * r1 + m[2] * r2;
-    const double z1 = m[3] * r0 + m[4] * r1 + m[5] * r2;
-    const double z2 = m[6] * r0 + m[7] * r1 + m[8] * r2;
+    double z0, z1, z2;
+    applyBlock<L>(m, r0, r1, r2, z0, z1, z2);
     s += z0 * r0 + z1 * r1 + z2 * r2;
     t += r0 * r0 + r1 * r1 + r2 * r2;
   }
@@ -52,7 +82,7 @@ LAMINA_VECTOR_CLONES void updateNodes(const double* P, int n, double alpha, doub
   rr += t;
 }
 
-template <bool PerNode>
+template <Blocks L>
 LAMINA_VECTOR_CLONES void directionNodes(const double* P, int n, double beta,
                                          const double* __restrict r, double* __restrict p, int i0,
                                          int i1, double& rz, double& rr) {
@@ -63,11 +93,10 @@ LAMINA_VECTOR_CLONES void directionNodes(const double* P, int n, double beta,
       p[i] = p[n1 + i] = p[n2 + i] = 0;
 #pragma omp simd reduction(+ : s, t)
   for (int i = i0; i < i1; ++i) {
-    const double* m = PerNode ? P + 9 * static_cast<std::ptrdiff_t>(i) : P;
+    const double* m = blockOf<L>(P, i);
     const double r0 = r[i], r1 = r[n1 + i], r2 = r[n2 + i];
-    const double z0 = m[0] * r0 + m[1] * r1 + m[2] * r2;
-    const double z1 = m[3] * r0 + m[4] * r1 + m[5] * r2;
-    const double z2 = m[6] * r0 + m[7] * r1 + m[8] * r2;
+    double z0, z1, z2;
+    applyBlock<L>(m, r0, r1, r2, z0, z1, z2);
     p[i] = z0 + beta * p[i];
     p[n1 + i] = z1 + beta * p[n1 + i];
     p[n2 + i] = z2 + beta * p[n2 + i];
@@ -110,13 +139,27 @@ StepSolver::StepSolver(const SparseMatrix& A, LinearSolverKind kind, double tole
   // Block-Jacobi: invert the 3x3 diagonal block of every node.
   Ab_ = BlockMatrix(A);
   const int nn = n / 3;
-  // One inverse per stored row (row-major): shared rows share their inverse too.
-  block_inverse_.resize(9 * static_cast<std::size_t>(Ab_.storedRows()));
+  // One inverse per stored row (row-major): shared rows share their inverse
+  // too; split blocks keep the five numbers that are not exact zeros (the
+  // cofactors of the coupling terms are differences of products with zeros).
+  const bool split = Ab_.splitBlocks();
+  const std::size_t per = split ? 5 : 9;
+  block_inverse_.resize(per * static_cast<std::size_t>(Ab_.storedRows()));
   for (int i = 0; i < nn; ++i) {
     const Eigen::Matrix3d inv = Ab_.diagonalBlock(i).inverse();
+    double* m = block_inverse_.data() + per * static_cast<std::size_t>(Ab_.rowOf(i));
+    if (split) {
+      assert(inv(0, 2) == 0 && inv(1, 2) == 0 && inv(2, 0) == 0 && inv(2, 1) == 0);
+      m[0] = inv(0, 0);
+      m[1] = inv(0, 1);
+      m[2] = inv(1, 0);
+      m[3] = inv(1, 1);
+      m[4] = inv(2, 2);
+      continue;
+    }
     for (int c = 0; c < 3; ++c)
       for (int d = 0; d < 3; ++d)
-        block_inverse_[9 * static_cast<std::size_t>(Ab_.rowOf(i)) + 3 * c + d] = inv(c, d);
+        m[3 * c + d] = inv(c, d);
   }
   for (Eigen::VectorXd* v : {&xp_, &rp_, &pp_, &qp_})
     v->resize(n);
@@ -210,6 +253,7 @@ struct StepSolver::CgRun {
   int nn;                               ///< nodes: the stride of the planar vectors
   double target;                        ///< converged when ||r|| <= target
   bool per_node;                        ///< one preconditioner block per node (no shared rows)
+  bool split;                           ///< per node, split blocks (5 numbers)
   std::vector<Partial> partial;         ///< per thread: the reductions' partial sums
   CgOutcome outcome = CgOutcome::limit; ///< thread 0's report, read after the region
   double final_rr = 0;                  ///< r.r at the end
@@ -251,7 +295,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   if (x.size() != n)
     x = Eigen::VectorXd::Zero(n);
   const bool parallel = n > kParallelMin;
-  CgRun run{n / 3, tolerance_ * bnorm, Ab_.sharedRows() == 0,
+  CgRun run{n / 3, tolerance_ * bnorm, Ab_.sharedRows() == 0, Ab_.splitBlocks(),
             std::vector<Partial>(parallel ? omp_get_max_threads() : 1)};
   const double* r0 = have_residual ? r_.data() : b.data();
 #pragma omp parallel if (parallel)
@@ -332,11 +376,13 @@ void StepSolver::cgUpdate(const CgThread& t, double alpha, double& rz, double& r
   double* rp = rp_.data();
   const double* pp = pp_.data();
   const double* qp = qp_.data();
+  if (t.run.split)
+    return updateNodes<Blocks::Split>(P, nn, alpha, xp, rp, pp, qp, t.i0, t.i1, rz, rr);
   if (t.run.per_node)
-    return updateNodes<true>(P, nn, alpha, xp, rp, pp, qp, t.i0, t.i1, rz, rr);
+    return updateNodes<Blocks::PerNode>(P, nn, alpha, xp, rp, pp, qp, t.i0, t.i1, rz, rr);
   Ab_.forEachRun(t.i0, t.i1, [&](int r0, int r1, int row) {
-    updateNodes<false>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, alpha, xp, rp, pp, qp, r0, r1,
-                       rz, rr);
+    updateNodes<Blocks::Shared>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, alpha, xp, rp, pp, qp,
+                                r0, r1, rz, rr);
   });
 }
 
@@ -345,11 +391,13 @@ void StepSolver::cgDirection(const CgThread& t, double beta, double& rz, double&
   const int nn = t.run.nn;
   const double* rp = rp_.data();
   double* pp = pp_.data();
+  if (t.run.split)
+    return directionNodes<Blocks::Split>(P, nn, beta, rp, pp, t.i0, t.i1, rz, rr);
   if (t.run.per_node)
-    return directionNodes<true>(P, nn, beta, rp, pp, t.i0, t.i1, rz, rr);
+    return directionNodes<Blocks::PerNode>(P, nn, beta, rp, pp, t.i0, t.i1, rz, rr);
   Ab_.forEachRun(t.i0, t.i1, [&](int r0, int r1, int row) {
-    directionNodes<false>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, beta, rp, pp, r0, r1, rz,
-                          rr);
+    directionNodes<Blocks::Shared>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, beta, rp, pp, r0,
+                                   r1, rz, rr);
   });
 }
 

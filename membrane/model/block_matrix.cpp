@@ -17,7 +17,7 @@
 
 namespace lamina::membrane {
 
-BlockMatrix::BlockMatrix(const SparseMatrix& A, bool share_rows) {
+BlockMatrix::BlockMatrix(const SparseMatrix& A, BlockStorage storage) {
   LAMINA_CHECK(A.rows() % 3 == 0 && A.rows() == A.cols(), "BlockMatrix needs a 3n x 3n matrix");
   const int n = static_cast<int>(A.rows() / 3);
   n_ = n;
@@ -42,13 +42,39 @@ BlockMatrix::BlockMatrix(const SparseMatrix& A, bool share_rows) {
         for (int d = 0; d < 3; ++d)
           val_[9 * b + 3 * c + d] = v[outer[3 * i + c] + 3 * k + d];
     }
-  if (share_rows)
+  if (storage == BlockStorage::Automatic) {
     shareRepeatedRows();
-  if (!kind_.empty())
+    if (!kind_.empty())
+      return;
+  }
+  storePlainBlocks(storage == BlockStorage::Automatic);
+}
+
+void BlockMatrix::storePlainBlocks(bool may_split) {
+  const std::size_t nb = col_.size();
+  // Row-major values: (0,2) at 2, (1,2) at 5, (2,0) at 6, (2,1) at 7.
+  split_ = may_split && nb > 0;
+  for (std::size_t b = 0; b < nb && split_; ++b) {
+    const double* m = val_.data() + 9 * b;
+    split_ = m[2] == 0 && m[5] == 0 && m[6] == 0 && m[7] == 0;
+  }
+  if (split_) {
+    std::vector<double> v(5 * nb);
+    for (std::size_t b = 0; b < nb; ++b) {
+      const double* m = val_.data() + 9 * b;
+      double* w = v.data() + 5 * b;
+      w[0] = m[0]; // the 2x2 block column-major, then A(2,2)
+      w[1] = m[3];
+      w[2] = m[1];
+      w[3] = m[4];
+      w[4] = m[8];
+    }
+    val_ = std::move(v);
     return;
-  // Plain storage: blocks column-major (plainRows() loads a column at once),
-  // one pad value so the last column's 4-wide load stays inside.
-  for (std::size_t b = 0; b < col_.size(); ++b) {
+  }
+  // Column-major 3x3 blocks (plainRows() loads a column at once), one pad
+  // value so the last column's 4-wide load stays inside.
+  for (std::size_t b = 0; b < nb; ++b) {
     double* m = val_.data() + 9 * b;
     std::swap(m[1], m[3]);
     std::swap(m[2], m[6]);
@@ -158,6 +184,18 @@ double runProduct(const int* off, const double* m, int nb, int n, const double* 
   return dot;
 }
 
+/// Stores row @p i's result (@p y0, @p y1, @p y2) in @p y (component c of
+/// node i at s i + c o) and @return its part of x.y.
+inline double storeRow(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i,
+                       double y0, double y1, double y2) {
+  double* yi = y + s * i;
+  const double* xi = x + s * i;
+  yi[0] = y0;
+  yi[o] = y1;
+  yi[2 * o] = y2;
+  return xi[0] * y0 + xi[o] * y1 + xi[2 * o] * y2;
+}
+
 /// Plain blocks (column-major: m[3 d + c] = A(c, d)) on the rows [i0, i1):
 /// component c of node j of x and y at s j + c o (interleaved: s = 3, o = 1;
 /// planar: s = 1, o = n). Per row the operations and their order of the
@@ -176,15 +214,55 @@ double plainRowsScalar(const int* start, const int* col, const double* val, cons
       y1 += m[1] * a + m[4] * c + m[7] * d;
       y2 += m[2] * a + m[5] * c + m[8] * d;
     }
-    double* yi = y + s * i;
-    const double* xi = x + s * i;
-    yi[0] = y0;
-    yi[o] = y1;
-    yi[2 * o] = y2;
-    dot += xi[0] * y0 + xi[o] * y1 + xi[2 * o] * y2;
+    dot += storeRow(x, y, s, o, i, y0, y1, y2);
   }
   return dot;
 }
+
+/// plainRowsScalar() for split blocks (m = a00 a10 a01 a11 a22 per block):
+/// the same products and sums without the terms that are exact zeros, so the
+/// same numbers as the 3x3 blocks (up to the sign of a zero).
+double splitRows(const int* start, const int* col, const double* val, const double* x, double* y,
+                 std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+  double dot = 0;
+  for (int i = i0; i < i1; ++i) {
+    double y0 = 0, y1 = 0, y2 = 0;
+    for (int b = start[i]; b < start[i + 1]; ++b) {
+      const double* m = val + 5 * static_cast<std::size_t>(b);
+      const double* xj = x + s * col[b];
+      const double a = xj[0], c = xj[o];
+      y0 += m[0] * a + m[2] * c;
+      y1 += m[1] * a + m[3] * c;
+      y2 += m[4] * xj[2 * o];
+    }
+    dot += storeRow(x, y, s, o, i, y0, y1, y2);
+  }
+  return dot;
+}
+
+#if defined(__GNUC__) && defined(__x86_64__)
+/// splitRows() with the in-plane pair of a block in one SSE2 register
+/// (baseline x86-64): [y0, y1] += [a00, a10] x0 + [a01, a11] x1, the same
+/// multiplications and additions in the same order, so the same bits.
+double splitRowsSse2(const int* start, const int* col, const double* val, const double* x,
+                     double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+  double dot = 0;
+  for (int i = i0; i < i1; ++i) {
+    __m128d acc = _mm_setzero_pd();
+    double y2 = 0;
+    for (int b = start[i]; b < start[i + 1]; ++b) {
+      const double* m = val + 5 * static_cast<std::size_t>(b);
+      const double* xj = x + s * col[b];
+      acc = _mm_add_pd(acc, _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(m), _mm_load1_pd(xj)),
+                                       _mm_mul_pd(_mm_loadu_pd(m + 2), _mm_load1_pd(xj + o))));
+      y2 += m[4] * xj[2 * o];
+    }
+    dot +=
+        storeRow(x, y, s, o, i, _mm_cvtsd_f64(acc), _mm_cvtsd_f64(_mm_unpackhi_pd(acc, acc)), y2);
+  }
+  return dot;
+}
+#endif
 
 #if defined(__GNUC__) && defined(__x86_64__)
 #define LAMINA_AVX_BLOCKS 1
@@ -208,12 +286,7 @@ __attribute__((target("avx"))) double plainRowsAvx(const int* start, const int* 
     }
     alignas(32) double v[4];
     _mm256_store_pd(v, acc);
-    double* yi = y + s * i;
-    const double* xi = x + s * i;
-    yi[0] = v[0];
-    yi[o] = v[1];
-    yi[2 * o] = v[2];
-    dot += xi[0] * v[0] + xi[o] * v[1] + xi[2 * o] * v[2];
+    dot += storeRow(x, y, s, o, i, v[0], v[1], v[2]);
   }
   return dot;
 }
@@ -270,6 +343,13 @@ void BlockMatrix::useKernel(BlockKernel kernel) {
 
 double BlockMatrix::plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o,
                               int begin, int end) const {
+  if (split_) {
+#if defined(__GNUC__) && defined(__x86_64__)
+    if (g_kernel == BlockKernel::Fastest)
+      return splitRowsSse2(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
+#endif
+    return splitRows(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
+  }
 #ifdef LAMINA_AVX_BLOCKS
   static const bool avx = __builtin_cpu_supports("avx");
   if (avx && g_kernel == BlockKernel::Fastest)
@@ -324,6 +404,12 @@ Eigen::Matrix3d BlockMatrix::diagonalBlock(int i) const {
   const int diagonal = shared ? 0 : i;
   for (int b = start[t]; b < start[t + 1]; ++b)
     if (cols[b] == diagonal) {
+      if (split_) {
+        const double* m = vals.data() + 5 * b;
+        Eigen::Matrix3d d;
+        d << m[0], m[2], 0, m[1], m[3], 0, 0, 0, m[4];
+        return d;
+      }
       if (shared) // row-major
         return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(vals.data() + 9 * b);
       return Eigen::Map<const Eigen::Matrix3d>(vals.data() + 9 * b); // column-major

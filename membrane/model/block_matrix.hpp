@@ -16,6 +16,16 @@
 /// row-major scalar product (y_c += A(c,0) x_0 + A(c,1) x_1 + A(c,2) x_2,
 /// block after block in column order): the same bits with or without AVX.
 ///
+/// Split blocks: when no block couples the in-plane components (0, 1) with
+/// the normal one (2) (every A(0,2), A(1,2), A(2,0), A(2,1) exactly zero:
+/// the flat membrane of a law without in-plane/transverse-shear coupling,
+/// e.g. any isotropic, orthotropic or monoclinic-about-z material), the
+/// plain storage keeps five numbers per block, the 2x2 in-plane block and
+/// A(2,2): 44 bytes per block with its column index instead of 84, for a
+/// product that is bound by streaming the matrix. The products are those of
+/// the 3x3 blocks without the terms that are exact zeros (x + 0 = x): the
+/// same numbers, up to the sign of a zero.
+///
 /// Two vector layouts. Interleaved (the solver's): dof 3 i + c. Planar (the
 /// CG iteration's): component c of node i at c n + i, three contiguous
 /// planes. With shared rows, consecutive nodes of one stored row (a "run",
@@ -47,6 +57,13 @@ void toPlanar(const double* a, double* p, int n, int i0, int i1);
 /// Copies nodes [@p i0, @p i1) of the planar @p p into the interleaved @p a.
 void fromPlanar(const double* p, double* a, int n, int i0, int i1);
 
+/// How a BlockMatrix stores its blocks.
+enum class BlockStorage {
+  Automatic, ///< shared rows on a repeated stencil, else split blocks when
+             ///< they decouple, else plain 3x3 blocks (the solvers' choice)
+  Plain      ///< plain 3x3 blocks always (the benchmarks' floor, tests)
+};
+
 /// Which code computes the plain-block product (unstructured meshes).
 enum class BlockKernel {
   Fastest, ///< AVX when the CPU has it, else Scalar (the default)
@@ -61,9 +78,8 @@ public:
   /// products running at the same time).
   static void useKernel(BlockKernel kernel);
   BlockMatrix() = default;
-  /// Copies @p A (3n x 3n, full 3x3 blocks); @p share_rows = false keeps
-  /// the plain blocks even on a repeated stencil (benchmarks, tests).
-  explicit BlockMatrix(const SparseMatrix& A, bool share_rows = true);
+  /// Copies @p A (3n x 3n, full 3x3 blocks) in the storage @p storage.
+  explicit BlockMatrix(const SparseMatrix& A, BlockStorage storage = BlockStorage::Automatic);
   /// y = A x, interleaved vectors (OpenMP over block rows for large matrices).
   void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// y = A x and @return x.y, in one pass (interleaved vectors).
@@ -82,6 +98,8 @@ public:
   int sharedRows() const { return kind_.empty() ? 0 : static_cast<int>(kstart_.size()) - 1; }
   /// @return number of stored rows (distinct rows, or one per node)
   int storedRows() const { return kind_.empty() ? n_ : sharedRows(); }
+  /// @return true when the blocks are stored split (in-plane 2x2 and normal)
+  bool splitBlocks() const { return split_; }
 
   /// Calls @p f(b, e, row) for the runs [b, e) of consecutive nodes in
   /// [@p begin, @p end) that share stored row @p row (one node per call
@@ -104,6 +122,9 @@ public:
 
 private:
   void shareRepeatedRows();
+  /// Plain storage: split blocks when @p may_split and every block
+  /// decouples, else column-major 3x3 blocks.
+  void storePlainBlocks(bool may_split);
   /// y = A x on the rows [@p begin, @p end) of plain storage, component c
   /// of node j at s j + c o in x and y; @return x.y there (AVX when the
   /// CPU has it, the same bits either way).
@@ -121,7 +142,9 @@ private:
   std::vector<int> run_begin_;          // first node of each run of equal kind_, then n
   std::vector<int> start_;              // block row pointers
   std::vector<int> col_;                // block column (node) of each block
-  std::vector<double> val_;             // 9 values per block, column-major, then one pad
+  std::vector<double> val_;             // 9 values per block, column-major, then one pad;
+                                        // split: a00 a10 a01 a11 a22 per block
+  bool split_ = false;                  // plain storage in split blocks
   mutable std::vector<double> xs_, ys_; // planar scratch of multiply() (shared rows)
 };
 

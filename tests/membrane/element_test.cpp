@@ -23,6 +23,18 @@ lamina::materials::Matrix6 generalD() {
   return 1e9 * (B * B.transpose() + 6 * lamina::materials::Matrix6::Identity());
 }
 
+/// generalD() without the terms that couple the in-plane and normal strains
+/// (xx, yy, zz, xy; lamina order 0-3) with the transverse shears (yz, xz;
+/// 4, 5): a monoclinic law whose flat membrane has no block coupling u, v
+/// with w.
+lamina::materials::Matrix6 monoclinicD() {
+  lamina::materials::Matrix6 D = generalD();
+  for (int i : {0, 1, 2, 3})
+    for (int j : {4, 5})
+      D(i, j) = D(j, i) = 0;
+  return D;
+}
+
 /// 4x4 squares with interior nodes moved off the grid: an irregular mesh.
 Mesh irregularMesh() {
   Mesh m = structuredRectangle(1.0, 1.0, 4, 4);
@@ -31,6 +43,19 @@ Mesh irregularMesh() {
   for (int j = 1; j < 4; ++j)
     for (int i = 1; i < 4; ++i)
       m.nodes[j * 5 + i] += Eigen::Vector2d(d(gen), d(gen));
+  finalizeMesh(m);
+  return m;
+}
+
+/// The unit square in @p n x @p n squares, interior nodes moved by up to
+/// @p amplitude in x and y (seeded @p seed): no two rows alike.
+Mesh perturbedGrid(int n, double amplitude, unsigned seed) {
+  Mesh m = structuredRectangle(1.0, 1.0, n, n);
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> d(-amplitude, amplitude);
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i)
+      m.nodes[j * (n + 1) + i] += Eigen::Vector2d(d(gen), d(gen));
   finalizeMesh(m);
   return m;
 }
@@ -214,17 +239,12 @@ TEST(MembraneElement, BlockProductsEqualTheAssembledMatrix) {
   // Shared rows (uniform structured mesh) and plain blocks (irregular mesh)
   // both reproduce K x; shared rows differ from their own by < 1e-14 of the
   // row's largest entry by construction, hence the 1e-13 relative bound.
-  Mesh irregular = structuredRectangle(1.0, 1.0, 40, 40);
-  std::mt19937 gen(5);
-  std::uniform_real_distribution<double> d(-0.005, 0.005);
-  for (int j = 1; j < 40; ++j)
-    for (int i = 1; i < 40; ++i)
-      irregular.nodes[j * 41 + i] += Eigen::Vector2d(d(gen), d(gen));
-  finalizeMesh(irregular);
+  const Mesh irregular = perturbedGrid(40, 0.005, 5);
   const Mesh uniform = structuredRectangle(1.0, 1.0, 40, 40);
   for (const Mesh* m : {&uniform, static_cast<const Mesh*>(&irregular)}) {
     const auto g = assemble(*m, {section(generalD())}, false);
     const BlockMatrix B(g.K);
+    EXPECT_FALSE(B.splitBlocks()); // generalD couples u, v with w
     if (m == &uniform)
       EXPECT_GT(B.sharedRows(), 0);
     else
@@ -250,19 +270,42 @@ TEST(MembraneElement, BlockProductsEqualTheAssembledMatrix) {
   }
 }
 
+// A law without in-plane/transverse-shear coupling gives blocks with exact
+// zeros between u, v and w; BlockMatrix then stores five numbers per block.
+// Its products must equal bit for bit the scalar product of the CSR matrix
+// block after block (the zeros add nothing), with either kernel and in both
+// vector layouts, and the diagonal blocks must be those of the matrix.
+TEST(BlockMatrix, SplitBlocksGiveTheBitsOfTheFullBlocks) {
+  const Mesh irregular = perturbedGrid(30, 0.006, 13);
+  const auto g = assemble(irregular, {section(monoclinicD())}, false);
+  const BlockMatrix B(g.K), full(g.K, BlockStorage::Plain);
+  ASSERT_TRUE(B.splitBlocks());
+  ASSERT_FALSE(full.splitBlocks());
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(g.K.rows());
+  const int n = B.nodes();
+  Eigen::VectorXd xp(3 * n), y, yp(3 * n), yi(3 * n), yf;
+  toPlanar(x.data(), xp.data(), n, 0, n);
+  for (const BlockKernel kernel : {BlockKernel::Fastest, BlockKernel::Scalar}) {
+    BlockMatrix::useKernel(kernel);
+    const double dot = B.multiplyDot(x, y);
+    const double pdot = B.multiplyPlanar(xp.data(), yp.data(), 0, n);
+    fromPlanar(yp.data(), yi.data(), n, 0, n);
+    expectBlockRowOrder(g.K, x, y, yi);
+    EXPECT_EQ(dot, full.multiplyDot(x, yf));
+    EXPECT_EQ(pdot, dot);
+  }
+  BlockMatrix::useKernel(BlockKernel::Fastest);
+  for (int i = 0; i < n; i += 37)
+    EXPECT_TRUE((B.diagonalBlock(i).array() == full.diagonalBlock(i).array()).all()) << i;
+}
+
 // The plain-block product has two kernels, AVX and the scalar loop a CPU
 // without AVX runs; both do the same operations in the same order (AVX
 // without FMA), so on an irregular mesh (plain storage) their products and
 // dot products must be equal to the bit, in both vector layouts. On a CPU
 // without AVX both runs take the scalar loop and the test still holds.
 TEST(BlockMatrix, ScalarAndVectorKernelsGiveTheSameBits) {
-  Mesh irregular = structuredRectangle(1.0, 1.0, 30, 30);
-  std::mt19937 gen(11);
-  std::uniform_real_distribution<double> d(-0.006, 0.006);
-  for (int j = 1; j < 30; ++j)
-    for (int i = 1; i < 30; ++i)
-      irregular.nodes[j * 31 + i] += Eigen::Vector2d(d(gen), d(gen));
-  finalizeMesh(irregular);
+  const Mesh irregular = perturbedGrid(30, 0.006, 11);
   const auto g = assemble(irregular, {section(generalD())}, false);
   const BlockMatrix B(g.K);
   ASSERT_EQ(B.sharedRows(), 0); // plain storage: the kernels under test
