@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 #include "core/toml_reader.hpp"
+#include "materials/plane_stress.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -58,6 +59,7 @@ FabricParameters readFabricParameters(const core::TableReader& t) {
 
 FabricLaw::FabricLaw(FabricParameters p) : p_(std::move(p)), Et_(p_.transverseModulus()) {
   LAMINA_CHECK(p_.G12 > 0 && std::isfinite(p_.G12), "fabric G12 must be positive (", p_.G12, ")");
+  max_modulus_ = elasticStiffness(1.0).matrix().cwiseAbs().maxCoeff();
 }
 
 Stiffness FabricLaw::elasticStiffness(double J) const {
@@ -86,6 +88,40 @@ void FabricLaw::update(const PointStep& step, const double*, double* state, Vect
     d << p_.warp.tangent(e[0]), p_.fill.tangent(e[1]), Et_, p_.G12, Et_, Et_;
     *tangent = Matrix6(d.asDiagonal()) / step.J;
   }
+}
+
+bool FabricLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n, double* state,
+                                double tolerance, PlaneStressResult& out) const {
+  if (ps.n_free != 0)
+    return false;
+  // planeStressUpdate()'s predictor and its first test, z = 0: the strain of
+  // t_n plus the imposed in-plane increment, the thickness stretch of t_n.
+  PointStep step;
+  step.eps_n = ps.eps_n;
+  step.eps = ps.eps_n;
+  step.eps[0] += ps.deps_p[0];
+  step.eps[1] += ps.deps_p[1];
+  step.eps[3] += ps.deps_p[2];
+  step.J_n = ps.J2_n * ps.lambda3_n;
+  const double lambda3 = midpointThicknessStretch(ps.lambda3_n, 0.0);
+  step.J = ps.J2 * lambda3;
+  step.dt = ps.dt;
+  double trial[1];
+  Vector6 sigma;
+  update(step, state_n, trial, sigma, nullptr);
+  const double residual =
+      std::max({std::abs(sigma[2]), std::abs(sigma[4]), std::abs(sigma[5])}); // zz, yz, xz
+  // max |elasticStiffness(J_n)| = max_modulus_ / J_n exactly (rounding is monotone)
+  if (!(residual <=
+        tolerance * planeStressScale(sigma, max_modulus_ / step.J_n, ps.eps_n, step.eps)))
+    return false; // out-of-plane strain left at t_n: the Newton removes it
+  state[kEnergy] = trial[kEnergy];
+  out.eps = step.eps;
+  out.lambda3 = lambda3;
+  out.sigma = sigma;
+  out.iterations = 0;
+  out.residual = residual;
+  return true;
 }
 
 double FabricLaw::storedEnergy(const Vector6&, const double* state, double J) const {

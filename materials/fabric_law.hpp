@@ -99,6 +99,16 @@ public:
               Matrix6* tangent) const override;
   /// W / J (J/m^3 of current volume) with W from @p state (required).
   double storedEnergy(const Vector6& sigma, const double* state, double J) const override;
+  /// Membrane plane stress with no free direction: nothing couples the
+  /// transverse terms with the in-plane strains (file comment), so the
+  /// Newton of planeStressUpdate() stops at its predictor, which is z = 0
+  /// (the out-of-plane strains and the thickness of t_n kept). This takes
+  /// that step and its convergence test without the Newton's stiffness,
+  /// LU and tangent; a step the test refuses, or one with free directions
+  /// (wrinkling), is declined and gets the Newton. The same numbers as the
+  /// Newton's (up to the sign of a zero).
+  bool planeStressStep(const PlaneStressStep& step, const double* state_n, double* state,
+                       double tolerance, PlaneStressResult& out) const override;
   /// @return W(@p eps) per reference volume (J/m^3; see the file comment)
   double energy(const Vector6& eps) const;
   /// @return the parameters
@@ -106,7 +116,8 @@ public:
 
 private:
   FabricParameters p_;
-  double Et_; ///< E_t = G_t (Pa)
+  double Et_;          ///< E_t = G_t (Pa)
+  double max_modulus_; ///< the largest entry of elasticStiffness(1) (Pa)
 };
 
 } // namespace lamina::materials

@@ -177,6 +177,51 @@ TEST(FabricLaw, PlaneStressStepConvergesAtOnceWithTheFabricsStress) {
   EXPECT_EQ(r.tangent(1, 1), 0.0);
 }
 
+// The law's own plane-stress step (no free direction) is the Newton's
+// predictor step and its first test: along a history of in-plane strain
+// increments that load and unload both yarns (cut-off included) it must give
+// the Newton's eps, lambda3, sigma and state (planeStressUpdate with a
+// tangent, which never takes the own step) to the bit. A strain of t_n with
+// a transverse part above the tolerance is declined, and so is a step with
+// a free direction (both then get the Newton).
+TEST(FabricLaw, OwnPlaneStressStepIsTheNewtonsToTheBit) {
+  const mat::FabricLaw law = linearFabric();
+  mat::PlaneStressStep ps;
+  double state[1] = {0}, own[1] = {0}, gen[1] = {0};
+  double J2 = 1;
+  int compressed[2] = {0, 0}; // steps ending with the warp, the fill cut off
+  for (int k = 0; k < 200; ++k) {
+    const double t = 0.05 * k;
+    ps.deps_p = {2e-4 * std::cos(t), -3e-4 * std::sin(1.3 * t), 1e-4 * std::cos(0.7 * t)};
+    ps.J2_n = J2;
+    ps.J2 = J2 = 1 + 0.01 * std::sin(0.2 * t);
+    ps.dt = 1e-6;
+    mat::PlaneStressResult a;
+    ASSERT_TRUE(law.planeStressStep(ps, state, own, mat::kPlaneStressTolerance, a)) << k;
+    const mat::PlaneStressResult b = mat::planeStressUpdate(law, ps, state, gen, true);
+    ASSERT_EQ(b.iterations, 0) << k;
+    ASSERT_TRUE((a.eps.array() == b.eps.array()).all()) << k;
+    ASSERT_TRUE((a.sigma.array() == b.sigma.array()).all()) << k;
+    ASSERT_EQ(a.lambda3, b.lambda3) << k;
+    ASSERT_EQ(own[0], gen[0]) << k;
+    ps.eps_n = a.eps;
+    state[0] = own[0];
+    compressed[0] += a.eps[0] < 0;
+    compressed[1] += a.eps[1] < 0;
+  }
+  EXPECT_GT(compressed[0], 10); // both yarns were cut off along the history
+  EXPECT_GT(compressed[1], 10);
+  mat::PlaneStressResult a;
+  mat::PlaneStressStep off = ps;
+  off.eps_n[2] = 1e-3; // sigma_zz = E_t 1e-3 / J: far above the tolerance
+  EXPECT_FALSE(law.planeStressStep(off, state, own, mat::kPlaneStressTolerance, a));
+  EXPECT_EQ(own[0], gen[0]); // nothing written
+  mat::PlaneStressStep wrinkled = ps;
+  wrinkled.n_free = 1;
+  wrinkled.free_dir[0] = {0, 1, 0};
+  EXPECT_FALSE(law.planeStressStep(wrinkled, state, own, mat::kPlaneStressTolerance, a));
+}
+
 // `materials drive --path uniaxial-stress` along warp: F = diag(1 + e, 1 +
 // l_y, 1 + l_z); with no coupling the lateral stretches stay 1, the law's
 // strain is the midpoint sum m = sum 2 (l_k - l_{k-1}) / (l_k + l_{k-1}) of
