@@ -109,6 +109,8 @@ bool FabricLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n
   double trial[1];
   Vector6 sigma;
   update(step, state_n, trial, sigma, nullptr);
+  if (!sigma.allFinite())
+    return false; // the Newton refuses it, with its message
   const double residual =
       std::max({std::abs(sigma[2]), std::abs(sigma[4]), std::abs(sigma[5])}); // zz, yz, xz
   // max |elasticStiffness(J_n)| = max_modulus_ / J_n exactly (rounding is monotone)

@@ -62,8 +62,10 @@
 /// constrained stresses; the isotropic GVBO law does so with no free
 /// direction and no transverse shear (one Newton on deps_zz and its
 /// overstress invariant together: a third of the work of a Newton on its
-/// update, which solves the overstress equation anew at every iterate). A
-/// law that declines gets the Newton above.
+/// update, which solves the overstress equation anew at every iterate); the
+/// fabric law (fabric_law.hpp) with no free direction, where the Newton
+/// would stop at its predictor (its transverse terms are uncoupled): one
+/// update and the test. A law that declines gets the Newton above.
 ///
 /// **Linear laws** (law.isLinear()): closed form, no iteration, sigma = C eps
 /// with z = -(B^T C B)^-1 B^T C (eps_n + E_p deps_p) (the constraints hold at
@@ -81,7 +83,7 @@
 ///
 /// **Cost.** A linear law: one solve of order 3 + nf. A law's own step:
 /// what the law says (GVBO: about three iterates, each one evaluation of
-/// its moduli and of its overstress equation). Otherwise one
+/// its moduli and of its overstress equation; fabric: one update). Otherwise one
 /// elasticStiffness(J_n), then per iteration one law update with tangent
 /// and one LU of order 3 + nf; no heap allocation, except one copy of the
 /// state when @p state aliases @p state_n.

@@ -93,6 +93,7 @@ if ! wait "$ROOF_PID"; then
   cat "$OUT/roof.log" >&2
   exit 1
 fi
+trap - EXIT
 "$PY" scripts/plot_roof.py "$OUT/roof"
 
 step "6. Results"

@@ -21,10 +21,11 @@
 /// the flat membrane of a law without in-plane/transverse-shear coupling,
 /// e.g. any isotropic, orthotropic or monoclinic-about-z material), the
 /// plain storage keeps five numbers per block, the 2x2 in-plane block and
-/// A(2,2): 44 bytes per block with its column index instead of 84, for a
+/// A(2,2): 44 bytes per block with its column index instead of 76, for a
 /// product that is bound by streaming the matrix. The products are those of
-/// the 3x3 blocks without the terms that are exact zeros (x + 0 = x): the
-/// same numbers, up to the sign of a zero.
+/// the 3x3 blocks without the terms that are exact zeros (x + 0 = x for a
+/// finite x): the same numbers, up to the sign of a zero (with an infinite
+/// or NaN w the 3x3 kernel's 0 * w would have spread a NaN to u and v).
 ///
 /// Two vector layouts. Interleaved (the solver's): dof 3 i + c. Planar (the
 /// CG iteration's): component c of node i at c n + i, three contiguous
@@ -66,7 +67,8 @@ enum class BlockStorage {
 
 /// Which code computes the plain-block product (unstructured meshes).
 enum class BlockKernel {
-  Fastest, ///< AVX when the CPU has it, else Scalar (the default)
+  Fastest, ///< AVX for 3x3 blocks when the CPU has it, SSE2 for split blocks on
+           ///< x86-64, else Scalar (the default)
   Scalar   ///< the portable loop a CPU without AVX runs (same bits)
 };
 
@@ -126,8 +128,9 @@ private:
   /// decouples, else column-major 3x3 blocks.
   void storePlainBlocks(bool may_split);
   /// y = A x on the rows [@p begin, @p end) of plain storage, component c
-  /// of node j at s j + c o in x and y; @return x.y there (AVX when the
-  /// CPU has it, the same bits either way).
+  /// of node j at s j + c o in x and y; @return x.y there (3x3 blocks on
+  /// AVX when the CPU has it, split blocks on SSE2 on x86-64; the same bits
+  /// as the scalar loops either way).
   double plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int begin,
                    int end) const;
   template <bool Dot>

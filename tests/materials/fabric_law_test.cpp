@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace mat = lamina::materials;
 using mat::Vector6;
@@ -181,9 +182,11 @@ TEST(FabricLaw, PlaneStressStepConvergesAtOnceWithTheFabricsStress) {
 // predictor step and its first test: along a history of in-plane strain
 // increments that load and unload both yarns (cut-off included) it must give
 // the Newton's eps, lambda3, sigma and state (planeStressUpdate with a
-// tangent, which never takes the own step) to the bit. A strain of t_n with
-// a transverse part above the tolerance is declined, and so is a step with
-// a free direction (both then get the Newton).
+// tangent, which never takes the own step) to the bit (compared with ==, so
+// up to the sign of a zero), and planeStressUpdate without a tangent (which
+// takes it) the same. A strain of t_n with a transverse part above the
+// tolerance is declined, and so is a step with a free direction (both then
+// get the Newton), and so is a non-finite stress (the Newton's error).
 TEST(FabricLaw, OwnPlaneStressStepIsTheNewtonsToTheBit) {
   const mat::FabricLaw law = linearFabric();
   mat::PlaneStressStep ps;
@@ -199,7 +202,12 @@ TEST(FabricLaw, OwnPlaneStressStepIsTheNewtonsToTheBit) {
     mat::PlaneStressResult a;
     ASSERT_TRUE(law.planeStressStep(ps, state, own, mat::kPlaneStressTolerance, a)) << k;
     const mat::PlaneStressResult b = mat::planeStressUpdate(law, ps, state, gen, true);
+    double via[1] = {0};
+    const mat::PlaneStressResult c = mat::planeStressUpdate(law, ps, state, via, false);
     ASSERT_EQ(b.iterations, 0) << k;
+    ASSERT_TRUE((c.sigma.array() == b.sigma.array()).all() && c.lambda3 == b.lambda3 &&
+                via[0] == gen[0])
+        << k;
     ASSERT_TRUE((a.eps.array() == b.eps.array()).all()) << k;
     ASSERT_TRUE((a.sigma.array() == b.sigma.array()).all()) << k;
     ASSERT_EQ(a.lambda3, b.lambda3) << k;
@@ -220,6 +228,10 @@ TEST(FabricLaw, OwnPlaneStressStepIsTheNewtonsToTheBit) {
   wrinkled.n_free = 1;
   wrinkled.free_dir[0] = {0, 1, 0};
   EXPECT_FALSE(law.planeStressStep(wrinkled, state, own, mat::kPlaneStressTolerance, a));
+  mat::PlaneStressStep infinite = ps;
+  infinite.deps_p[0] = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(law.planeStressStep(infinite, state, own, mat::kPlaneStressTolerance, a));
+  EXPECT_THROW(mat::planeStressUpdate(law, infinite, state, own, false), lamina::Error);
 }
 
 // `materials drive --path uniaxial-stress` along warp: F = diag(1 + e, 1 +

@@ -5,6 +5,7 @@
 // blocks for a law that couples in-plane and transverse strains, split
 // blocks for an isotropic one). The planar product itself is checked in element_test.cpp.
 #include "helpers.hpp"
+#include "membrane/model/block_matrix.hpp"
 
 #include <gtest/gtest.h>
 
@@ -79,6 +80,13 @@ TEST(MembraneCg, UnstructuredIsotropicStrikeEqualsFactorizedSolve) {
                            "density = 1000.0\nthickness = 1.0e-3\n[time]\ndt = 2.0e-7\n"
                            "t_end = 1.0\n[[fixed]]\nnodes = \"edge\"\n"
                            "[[strike]]\nat = [0.0, 0.0]\nspeed = 10.0\n";
+  { // the storage this test is about: K and A = M + c K in split blocks
+    Model m = test::modelFromText(text);
+    Simulation sim(m);
+    const SparseMatrix A = sim.M() + 1e-12 * sim.K();
+    ASSERT_TRUE(BlockMatrix(sim.K()).splitBlocks());
+    ASSERT_TRUE(BlockMatrix(A).splitBlocks());
+  }
   long iterations = 0;
   EXPECT_LT(historyDifference(text, 60, &iterations), 1e-10); // as above
   EXPECT_GT(iterations, 60 * 2);

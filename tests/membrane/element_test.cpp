@@ -292,6 +292,7 @@ TEST(BlockMatrix, SplitBlocksGiveTheBitsOfTheFullBlocks) {
     fromPlanar(yp.data(), yi.data(), n, 0, n);
     expectBlockRowOrder(g.K, x, y, yi);
     EXPECT_EQ(dot, full.multiplyDot(x, yf));
+    EXPECT_TRUE((yf.array() == y.array()).all());
     EXPECT_EQ(pdot, dot);
   }
   BlockMatrix::useKernel(BlockKernel::Fastest);
