@@ -59,7 +59,6 @@ FabricParameters readFabricParameters(const core::TableReader& t) {
 
 FabricLaw::FabricLaw(FabricParameters p) : p_(std::move(p)), Et_(p_.transverseModulus()) {
   LAMINA_CHECK(p_.G12 > 0 && std::isfinite(p_.G12), "fabric G12 must be positive (", p_.G12, ")");
-  max_modulus_ = elasticStiffness(1.0).matrix().cwiseAbs().maxCoeff();
 }
 
 Stiffness FabricLaw::elasticStiffness(double J) const {
@@ -98,10 +97,7 @@ bool FabricLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n
   // t_n plus the imposed in-plane increment, the thickness stretch of t_n.
   PointStep step;
   step.eps_n = ps.eps_n;
-  step.eps = ps.eps_n;
-  step.eps[0] += ps.deps_p[0];
-  step.eps[1] += ps.deps_p[1];
-  step.eps[3] += ps.deps_p[2];
+  step.eps = strainAtEnd(ps, 0.0);
   step.J_n = ps.J2_n * ps.lambda3_n;
   const double lambda3 = midpointThicknessStretch(ps.lambda3_n, 0.0);
   step.J = ps.J2 * lambda3;
@@ -113,9 +109,11 @@ bool FabricLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n
     return false; // the Newton refuses it, with its message
   const double residual =
       std::max({std::abs(sigma[2]), std::abs(sigma[4]), std::abs(sigma[5])}); // zz, yz, xz
-  // max |elasticStiffness(J_n)| = max_modulus_ / J_n exactly (rounding is monotone)
+  // max |elasticStiffness(J_n)|: the largest diagonal entry / J_n, exactly
+  // (rounding is monotone)
+  const double max_modulus = std::max({p_.warp.maxSlope(), p_.fill.maxSlope(), Et_, p_.G12});
   if (!(residual <=
-        tolerance * planeStressScale(sigma, max_modulus_ / step.J_n, ps.eps_n, step.eps)))
+        tolerance * planeStressScale(sigma, max_modulus / step.J_n, ps.eps_n, step.eps)))
     return false; // out-of-plane strain left at t_n: the Newton removes it
   state[kEnergy] = trial[kEnergy];
   out.eps = step.eps;

@@ -116,8 +116,7 @@ public:
 
 private:
   FabricParameters p_;
-  double Et_;          ///< E_t = G_t (Pa)
-  double max_modulus_; ///< the largest entry of elasticStiffness(1) (Pa)
+  double Et_; ///< E_t = G_t (Pa)
 };
 
 } // namespace lamina::materials

@@ -335,8 +335,7 @@ bool GvboLaw::planeStressStep(const PlaneStressStep& ps, const double* state_n, 
     const StressAt at(st, s);
     if (!at.sigma.allFinite() || !std::isfinite(s.r) || !(s.dr > 0))
       return false;
-    Vector6 eps = ps.eps_n;
-    eps += Vector6(ps.deps_p[0], ps.deps_p[1], z, ps.deps_p[2], 0, 0);
+    const Vector6 eps = strainAtEnd(ps, z);
     const double residual = std::abs(at.sigma[2]);
     // converged as planeStressUpdate's Newton and as the law's own update
     // (solveGamma) would be

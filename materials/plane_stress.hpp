@@ -149,6 +149,14 @@ struct PlaneStressResult {
   double residual = 0;               ///< final max constrained stress (Pa, scaled as in the test)
 };
 
+/// @return the law's strain at t_{n+1} of @p step with the normal strain
+/// increment @p deps_zz and no transverse shear increment: eps_n + (deps_xx,
+/// deps_yy, deps_zz, deps_xy, 0, 0), lamina order (a law's own step without
+/// free directions).
+inline Vector6 strainAtEnd(const PlaneStressStep& step, double deps_zz) {
+  return step.eps_n + Vector6(step.deps_p[0], step.deps_p[1], deps_zz, step.deps_p[2], 0.0, 0.0);
+}
+
 /// Newton on the unknowns z = (eps_zz, eps_yz, eps_xz at t_{n+1}; a_1..a_n_free)
 /// so that sigma_zz = sigma_yz = sigma_xz = 0 and d_k . sigma_p = 0, with the
 /// in-plane increment deps_p + sum_k a_k d_k (file comment). Reads @p state_n,

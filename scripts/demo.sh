@@ -20,6 +20,16 @@ mkdir -p "$OUT/runs" "$OUT/cells" "$OUT/materials" "$OUT/impact"
 start=$(date +%s)
 
 step() { printf '\n== %s\n' "$*"; }
+membrane_run() { # membrane_run DIR CASE MATERIAL [extra --set ...]: its log in DIR/run.log
+  local dir="$1" case="$2" material="$3"
+  shift 3
+  mkdir -p "$dir"
+  if ! "$BIN/membrane" run "$case" --library "$LIB" --out "$dir" \
+    --set "section[0].material=$material" "$@" > /dev/null 2> "$dir/run.log"; then
+    cat "$dir/run.log" >&2
+    exit 1
+  fi
+}
 
 # The roof (step 4) is small (one thread) and the longest run: it starts now
 # on the second core; steps 1 to 3, then the sheets of step 5, share the first.
@@ -53,12 +63,7 @@ run() { # run NAME CASE MATERIAL [extra --set ...]
   shift 3
   local dir="$OUT/runs/$name"
   "$BIN/materials" --library "$LIB" show "$material" --json > "$OUT/materials/$material.json"
-  mkdir -p "$dir"
-  if ! "$BIN/membrane" run "$case" --library "$LIB" --out "$dir" \
-    --set "section[0].material=$material" "$@" > /dev/null 2> "$dir/run.log"; then
-    cat "$dir/run.log" >&2
-    exit 1
-  fi
+  membrane_run "$dir" "$case" "$material" "$@"
   "$PY" scripts/plot_run.py "$dir" --title "$name ($material)"
   "$PY" scripts/summarize_run.py "$dir" "$OUT/materials/$material.json" --title "$name"
 }
@@ -70,13 +75,7 @@ run table1-paper cases/membrane/table1-anisotropic.toml table1-anisotropic
 # The rate-dependent sheets (step 5) start now on the first core, beside the
 # roof: the reduced-order cell, then the three impacts (their log: impact.log).
 impact() { # impact DIR MATERIAL
-  local dir="$OUT/impact/$1"
-  mkdir -p "$dir"
-  if ! "$BIN/membrane" run cases/membrane/polyurea-sheet-impact.toml --library "$LIB" \
-    --out "$dir" --set "section[0].material=$2" > /dev/null 2> "$dir/run.log"; then
-    cat "$dir/run.log" >&2
-    exit 1
-  fi
+  membrane_run "$OUT/impact/$1" cases/membrane/polyurea-sheet-impact.toml "$2"
 }
 (
   set -e

@@ -254,8 +254,7 @@ void StepSolver::remember(const Eigen::VectorXd& x) {
 struct StepSolver::CgRun {
   int nn;                               ///< nodes: the stride of the planar vectors
   double target;                        ///< converged when ||r|| <= target
-  bool per_node;                        ///< one preconditioner block per node (no shared rows)
-  bool split;                           ///< per node, split blocks (5 numbers)
+  Blocks blocks;                        ///< where a node's preconditioner block is
   std::vector<Partial> partial;         ///< per thread: the reductions' partial sums
   CgOutcome outcome = CgOutcome::limit; ///< thread 0's report, read after the region
   double final_rr = 0;                  ///< r.r at the end
@@ -297,7 +296,10 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   if (x.size() != n)
     x = Eigen::VectorXd::Zero(n);
   const bool parallel = n > kParallelMin;
-  CgRun run{n / 3, tolerance_ * bnorm, Ab_.sharedRows() == 0, Ab_.splitBlocks(),
+  const Blocks blocks = Ab_.sharedRows() > 0 ? Blocks::Shared
+                        : Ab_.splitBlocks()  ? Blocks::Split
+                                             : Blocks::PerNode;
+  CgRun run{n / 3, tolerance_ * bnorm, blocks,
             std::vector<Partial>(parallel ? omp_get_max_threads() : 1)};
   const double* r0 = have_residual ? r_.data() : b.data();
 #pragma omp parallel if (parallel)
@@ -378,9 +380,9 @@ void StepSolver::cgUpdate(const CgThread& t, double alpha, double& rz, double& r
   double* rp = rp_.data();
   const double* pp = pp_.data();
   const double* qp = qp_.data();
-  if (t.run.split)
+  if (t.run.blocks == Blocks::Split)
     return updateNodes<Blocks::Split>(P, nn, alpha, xp, rp, pp, qp, t.i0, t.i1, rz, rr);
-  if (t.run.per_node)
+  if (t.run.blocks == Blocks::PerNode)
     return updateNodes<Blocks::PerNode>(P, nn, alpha, xp, rp, pp, qp, t.i0, t.i1, rz, rr);
   Ab_.forEachRun(t.i0, t.i1, [&](int r0, int r1, int row) {
     updateNodes<Blocks::Shared>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, alpha, xp, rp, pp, qp,
@@ -393,9 +395,9 @@ void StepSolver::cgDirection(const CgThread& t, double beta, double& rz, double&
   const int nn = t.run.nn;
   const double* rp = rp_.data();
   double* pp = pp_.data();
-  if (t.run.split)
+  if (t.run.blocks == Blocks::Split)
     return directionNodes<Blocks::Split>(P, nn, beta, rp, pp, t.i0, t.i1, rz, rr);
-  if (t.run.per_node)
+  if (t.run.blocks == Blocks::PerNode)
     return directionNodes<Blocks::PerNode>(P, nn, beta, rp, pp, t.i0, t.i1, rz, rr);
   Ab_.forEachRun(t.i0, t.i1, [&](int r0, int r1, int row) {
     directionNodes<Blocks::Shared>(P + 9 * static_cast<std::ptrdiff_t>(row), nn, beta, rp, pp, r0,
