@@ -22,23 +22,25 @@ constexpr int kParallelMin = 30000;
 /// Where the CG finds a node's preconditioner block P.
 enum class Blocks {
   Shared,  ///< one 3x3 block, row-major, for every node of a run of shared rows
-  PerNode, ///< 9 numbers per node from node 0 (row-major 3x3)
-  Split    ///< 5 numbers per node: the in-plane 2x2 block row-major, then P(2,2)
+  PerNode, ///< 3x3 per node, planar: entry (c, d) of node i at (3 c + d) n + i
+  Split    ///< in-plane 2x2 block and P(2,2) per node, planar: P00, P01, P10, P11,
+           ///< P22 of node i at k n + i, k = 0..4
 };
 
-/// z = P r for the node's block @p m in the layout @p L. Split blocks skip
-/// the exact zeros of the coupling terms (the same numbers).
+/// z = P r for the node's block at @p m, entry k at m[k s], in the layout
+/// @p L. Split blocks skip the exact zeros of the coupling terms (the same
+/// numbers).
 template <Blocks L>
-inline void applyBlock(const double* m, double r0, double r1, double r2, double& z0, double& z1,
-                       double& z2) {
+inline void applyBlock(const double* m, std::ptrdiff_t s, double r0, double r1, double r2,
+                       double& z0, double& z1, double& z2) {
   if constexpr (L == Blocks::Split) {
-    z0 = m[0] * r0 + m[1] * r1;
-    z1 = m[2] * r0 + m[3] * r1;
-    z2 = m[4] * r2;
+    z0 = m[0] * r0 + m[s] * r1;
+    z1 = m[2 * s] * r0 + m[3 * s] * r1;
+    z2 = m[4 * s] * r2;
   } else {
-    z0 = m[0] * r0 + m[1] * r1 + m[2] * r2;
-    z1 = m[3] * r0 + m[4] * r1 + m[5] * r2;
-    z2 = m[6] * r0 + m[7] * r1 + m[8] * r2;
+    z0 = m[0] * r0 + m[s] * r1 + m[2 * s] * r2;
+    z1 = m[3 * s] * r0 + m[4 * s] * r1 + m[5 * s] * r2;
+    z2 = m[6 * s] * r0 + m[7 * s] * r1 + m[8 * s] * r2;
   }
 }
 
@@ -47,7 +49,14 @@ template <Blocks L>
 inline const double* blockOf(const double* P, int i) {
   if constexpr (L == Blocks::Shared)
     return P;
-  return P + (L == Blocks::Split ? 5 : 9) * static_cast<std::ptrdiff_t>(i);
+  return P + i;
+}
+
+/// @return the stride between a block's entries: 1 for a shared block, the
+/// number of nodes @p n for the planar per-node blocks
+template <Blocks L>
+inline std::ptrdiff_t blockStride(int n) {
+  return L == Blocks::Shared ? 1 : n;
 }
 
 /// The CG vector updates on nodes [i0, i1) of planar vectors (plane stride
@@ -59,7 +68,7 @@ LAMINA_VECTOR_CLONES void updateNodes(const double* P, int n, double alpha, doub
                                       double* __restrict r, const double* __restrict p,
                                       const double* __restrict q, int i0, int i1, double& rz,
                                       double& rr) {
-  const std::ptrdiff_t n1 = n, n2 = 2 * n1;
+  const std::ptrdiff_t n1 = n, n2 = 2 * n1, ps = blockStride<L>(n);
   double s = 0, t = 0;
 #pragma omp simd reduction(+ : s, t)
   for (int i = i0; i < i1; ++i) {
@@ -74,7 +83,7 @@ LAMINA_VECTOR_CLONES void updateNodes(const double* P, int n, double alpha, doub
     r[n1 + i] = r1;
     r[n2 + i] = r2;
     double z0, z1, z2;
-    applyBlock<L>(m, r0, r1, r2, z0, z1, z2);
+    applyBlock<L>(m, ps, r0, r1, r2, z0, z1, z2);
     s += z0 * r0 + z1 * r1 + z2 * r2;
     t += r0 * r0 + r1 * r1 + r2 * r2;
   }
@@ -86,7 +95,7 @@ template <Blocks L>
 LAMINA_VECTOR_CLONES void directionNodes(const double* P, int n, double beta,
                                          const double* __restrict r, double* __restrict p, int i0,
                                          int i1, double& rz, double& rr) {
-  const std::ptrdiff_t n1 = n, n2 = 2 * n1;
+  const std::ptrdiff_t n1 = n, n2 = 2 * n1, ps = blockStride<L>(n);
   double s = 0, t = 0;
   if (beta == 0) // p may hold anything (NaN) before the first direction
     for (int i = i0; i < i1; ++i)
@@ -96,7 +105,7 @@ LAMINA_VECTOR_CLONES void directionNodes(const double* P, int n, double beta,
     const double* m = blockOf<L>(P, i);
     const double r0 = r[i], r1 = r[n1 + i], r2 = r[n2 + i];
     double z0, z1, z2;
-    applyBlock<L>(m, r0, r1, r2, z0, z1, z2);
+    applyBlock<L>(m, ps, r0, r1, r2, z0, z1, z2);
     p[i] = z0 + beta * p[i];
     p[n1 + i] = z1 + beta * p[n1 + i];
     p[n2 + i] = z2 + beta * p[n2 + i];
@@ -139,29 +148,33 @@ StepSolver::StepSolver(const SparseMatrix& A, LinearSolverKind kind, double tole
   // Block-Jacobi: invert the 3x3 diagonal block of every node.
   Ab_ = BlockMatrix(A);
   const int nn = n / 3;
-  // One inverse per stored row (row-major): shared rows share their inverse
-  // too; split blocks keep the five numbers that are not exact zeros (the
-  // cofactors of the coupling terms are differences of products with zeros).
-  const bool split = Ab_.splitBlocks();
+  // Shared rows share one inverse (row-major 3x3) per stored row; otherwise
+  // one per node in planes (entry k of node i at k nn + i), which the CG's
+  // vector loops load like its vectors; split blocks keep the five numbers
+  // that are not exact zeros (the cofactors of the coupling terms are
+  // differences of products with zeros).
+  const bool split = Ab_.splitBlocks(), shared = Ab_.sharedRows() > 0;
   const std::size_t per = split ? 5 : 9;
   block_inverse_.resize(per * static_cast<std::size_t>(Ab_.storedRows()));
   for (int i = 0; i < nn; ++i) {
     const Eigen::Matrix3d inv = Ab_.diagonalBlock(i).inverse();
-    double* m = block_inverse_.data() + per * static_cast<std::size_t>(Ab_.rowOf(i));
+    const std::ptrdiff_t s = shared ? 1 : nn;
+    double* m =
+        block_inverse_.data() + (shared ? 9 * static_cast<std::ptrdiff_t>(Ab_.rowOf(i)) : i);
     if (split) {
       // (a singular block gives NaN there as in the 3x3 inverse: not a split failure)
       assert(!inv.allFinite() ||
              (inv(0, 2) == 0 && inv(1, 2) == 0 && inv(2, 0) == 0 && inv(2, 1) == 0));
       m[0] = inv(0, 0);
-      m[1] = inv(0, 1);
-      m[2] = inv(1, 0);
-      m[3] = inv(1, 1);
-      m[4] = inv(2, 2);
+      m[s] = inv(0, 1);
+      m[2 * s] = inv(1, 0);
+      m[3 * s] = inv(1, 1);
+      m[4 * s] = inv(2, 2);
       continue;
     }
     for (int c = 0; c < 3; ++c)
       for (int d = 0; d < 3; ++d)
-        m[3 * c + d] = inv(c, d);
+        m[(3 * c + d) * s] = inv(c, d);
   }
   for (Eigen::VectorXd* v : {&xp_, &rp_, &pp_, &qp_})
     v->resize(n);

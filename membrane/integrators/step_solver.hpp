@@ -81,8 +81,9 @@ private:
   LinearSolverKind kind_;
   double tolerance_;
   int max_iterations_;
-  std::vector<double> block_inverse_; // block-Jacobi: 9 per stored row of Ab_, row-major (split: 5)
-  int projection_ = 0;                // max basis size (0 = off)
+  std::vector<double> block_inverse_;   // block-Jacobi: 9 per shared row (row-major), else 9 or
+                                        // 5 (split) planes of one entry per node
+  int projection_ = 0;                  // max basis size (0 = off)
   std::vector<Eigen::VectorXd> X_, AX_; // A-orthonormal past solutions and A X
   Eigen::VectorXd x0_, d_, ad_, r_;     // projection: start, new direction, A d, residual
   Eigen::VectorXd xp_, rp_, pp_, qp_;   // CG vectors, planar (component c of node i at c n + i)
