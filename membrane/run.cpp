@@ -117,9 +117,11 @@ private:
     steps_ = model_.time.integrator == IntegratorKind::Newmark
                  ? std::lround(model_.time.t_end / dt)
                  : static_cast<long>(std::ceil(model_.time.t_end / dt - 1e-9));
-    // A law with history changes the explicit step as the run goes
+    // The explicit step of a structure whose stiffness follows the state (a
+    // stretched fabric, a law with history) changes as the run goes
     // (Simulation::adaptStep): the run ends at t_end, steps_ is an estimate.
-    adaptive_ = model_.time.integrator == IntegratorKind::Explicit && sim.structure().hasHistory();
+    adaptive_ =
+        model_.time.integrator == IntegratorKind::Explicit && sim.structure().stateDependentStep();
     std::optional<Checkpoint> resumed;
     if (opt_.restart)
       resumed = resume(sim);

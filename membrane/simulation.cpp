@@ -27,7 +27,7 @@ double explicitStep(const TimeSettings& ts, double stable) {
 
 Simulation::Simulation(const Model& model)
     : model_(model), system_(model), structure_(system_.structure()) {
-  stable_dt_ = system_.stableStep(false);
+  stable_dt_ = system_.stableStep();
   if (model.time.integrator == IntegratorKind::Explicit)
     integrator_ =
         std::make_unique<CentralDifference>(system_, explicitStep(model.time, stable_dt_));
@@ -80,7 +80,7 @@ void Simulation::step() {
                    integrator_->forces());
   if (structure_.hasFailureThresholds())
     structure_.checkFailure(state_.t, state_.u, failure_);
-  if (structure_.hasHistory() && state_.step % kStableStepEvery == 0)
+  if (structure_.stateDependentStep() && state_.step % kStableStepEvery == 0)
     adaptStep();
   checkPenetration();
 }
@@ -88,7 +88,7 @@ void Simulation::step() {
 void Simulation::adaptStep() {
   if (model_.time.integrator != IntegratorKind::Explicit)
     return;
-  stable_dt_ = system_.stableStep(true);
+  stable_dt_ = system_.currentStableStep(state_.u);
   double target = model_.time.safety * stable_dt_;
   if (model_.time.dt > 0) // a given step is the largest the run takes
     target = std::min(target, model_.time.dt);
@@ -144,7 +144,7 @@ void Simulation::save(History& h) const {
   for (auto& [key, value] : own)
     h[kIntegrator + key] = std::move(value);
   structure_.saveHistory(h);
-  if (structure_.hasHistory()) // the adapted stable step (the summary reports it)
+  if (structure_.stateDependentStep()) // the adapted stable step (the summary reports it)
     h["structure/stable_dt"] = Eigen::VectorXd::Constant(1, stable_dt_);
   if (!model_.contact.empty()) {
     const SurfaceMotion& m = state_.surfaces;
@@ -209,8 +209,8 @@ void Simulation::restore(const History& h, long last_step) {
                 "and elements (an older build of the program, or another mesh.renumber), its "
                 "state does not fit this run; run the case again without --restart");
   const double dt = historyEntry(h, "integrator/dt", 1)[0];
-  // A run whose step adapts to its laws' state (hasHistory) may have changed it.
-  if (dt != integrator_->timeStep() && !structure_.hasHistory())
+  // A run whose step adapts to the state (stateDependentStep) may have changed it.
+  if (dt != integrator_->timeStep() && !structure_.stateDependentStep())
     throw Error("checkpoint was written with the time step " + core::formatExact(dt) +
                 " s, this run's is " + core::formatExact(integrator_->timeStep()) +
                 " s (another case or another build of the program)");
@@ -235,7 +235,7 @@ void Simulation::restore(const History& h, long last_step) {
   restoreFailure(h);
   restoreContact(h);
   structure_.restoreHistory(h);
-  if (structure_.hasHistory()) {
+  if (structure_.stateDependentStep()) {
     stable_dt_ = historyEntry(h, "structure/stable_dt", 1)[0];
     if (!(stable_dt_ > 0))
       throw Error("checkpoint entry 'structure/stable_dt' must be > 0");

@@ -205,6 +205,20 @@ void LargeDeflection::restoreHistory(const History& h) {
   trial_ = history_;
 }
 
+void LargeDeflection::deformation(const Packed& p, const double* u, double (&F0)[3],
+                                  double (&F1)[3]) const {
+  for (int c = 0; c < 3; ++c)
+    F0[c] = F1[c] = 0;
+  for (int a = 0; a < 3; ++a) {
+    const size_t k = 3 * static_cast<size_t>(p.node[a]);
+    for (int c = 0; c < 3; ++c) {
+      const double x = x0_[k + c] + u[k + c];
+      F0[c] += x * p.dN[2 * a];
+      F1[c] += x * p.dN[2 * a + 1];
+    }
+  }
+}
+
 void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
   const int ne = body_.mesh.numElements(), n = body_.mesh.numNodes();
   double* fe = fe_.data();
@@ -218,7 +232,6 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
     // f_a = h A0 F S dN_a; with the relaxed wrinkling law, S is relaxed when
     // it is not taut (relaxed_wrinkling.hpp). Projection and nonlinear-law
     // regions take the general path.
-    const double* x0 = x0_.data();
     const double* up = u.data();
     auto force = [&](int e, double* out) {
       const Packed& p = packed_[e];
@@ -230,15 +243,8 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
         Eigen::Map<Eigen::Matrix3d>{out} = fa;
         return;
       }
-      double F0[3] = {0, 0, 0}, F1[3] = {0, 0, 0}; // columns of F
-      for (int a = 0; a < 3; ++a) {
-        const size_t k = 3 * static_cast<size_t>(p.node[a]);
-        for (int c = 0; c < 3; ++c) {
-          const double x = x0[k + c] + up[k + c];
-          F0[c] += x * p.dN[2 * a];
-          F1[c] += x * p.dN[2 * a + 1];
-        }
-      }
+      double F0[3], F1[3]; // columns of F
+      deformation(p, up, F0, F1);
       if (law_element) {
         Eigen::Matrix<double, 3, 2> F;
         F << F0[0], F1[0], F0[1], F1[1], F0[2], F1[2];
@@ -315,13 +321,11 @@ double LargeDeflection::stableStep() const {
   return criticalStep(body_.mesh, speed);
 }
 
-double LargeDeflection::currentStableStep() const {
-  if (!hasHistory())
-    return stableStep();
+double LargeDeflection::currentStableStep(const Eigen::VectorXd& u) const {
   const size_t nr = body_.sections.size();
   std::vector<double> jmin(nr, std::numeric_limits<double>::infinity()), jmax(nr, 0.0);
   std::vector<double> amp(nr, 1.0), tension(nr, 0.0);
-  for (int e = 0; e < body_.mesh.numElements(); ++e)
+  for (int e = 0; e < body_.mesh.numElements() && hasHistory(); ++e)
     if (const double* b = history(e)) {
       const auto r = static_cast<size_t>(body_.mesh.region_of[e]);
       const double J = b[LawPoint::kJ];
@@ -338,11 +342,19 @@ double LargeDeflection::currentStableStep() const {
       amp[r] = std::max(amp[r], J / l2);
       tension[r] = std::max(tension[r], J * std::max(s1, 0.0) / l2);
     }
+  std::vector<double> stretch(nr, 1.0), s1(nr, 0.0); // linear regions
+  linearStretch(u, stretch, s1);
   std::vector<double> speed;
   for (size_t r = 0; r < nr; ++r) {
     const Section& s = body_.sections[r];
     if (s.isLinear()) {
-      speed.push_back(restSpeed(r));
+      // Never above the rest speed, and equal to it until the state is
+      // stiffer by more than round-off (the step then stays as it was).
+      const double rest = restSpeed(r);
+      const double now = std::sqrt(
+          (stretch[r] * maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(s1[r], 0.0)) /
+          s.density);
+      speed.push_back(now > rest * (1 + 1e-12) ? now : rest);
       continue;
     }
     // The instantaneous stiffness is the fastest the law can respond (any
@@ -361,6 +373,37 @@ double LargeDeflection::currentStableStep() const {
   for (size_t r = 0; r < nr; ++r)
     dt = std::min(dt, min_length_[r] / speed[r]);
   return dt;
+}
+
+void LargeDeflection::linearStretch(const Eigen::VectorXd& u, std::vector<double>& stretch,
+                                    std::vector<double>& tension) const {
+  const int ne = body_.mesh.numElements();
+#pragma omp parallel if (ne > kParallelElements)
+  {
+    std::vector<double> st(stretch), te(tension); // this thread's maxima
+#pragma omp for schedule(static)
+    for (int e = 0; e < ne; ++e) {
+      const auto r = static_cast<size_t>(body_.mesh.region_of[e]);
+      if (!body_.sections[r].isLinear())
+        continue;
+      double F0[3], F1[3]; // columns of F
+      deformation(packed_[e], u.data(), F0, F1);
+      const double c00 = F0[0] * F0[0] + F0[1] * F0[1] + F0[2] * F0[2];
+      const double c11 = F1[0] * F1[0] + F1[1] * F1[1] + F1[2] * F1[2];
+      const double c01 = F0[0] * F1[0] + F0[1] * F1[1] + F0[2] * F1[2];
+      st[r] = std::max(st[r], principal2(c00, c11, c01)[0]);
+      const Eigen::Vector3d E(0.5 * (c00 - 1), 0.5 * (c11 - 1), c01);
+      Eigen::Vector3d S = cps_[r] * E + s0_[r];
+      if (body_.sections[r].tension_only && !positiveSemidefinite2(S[0], S[1], S[2]))
+        S = stress(e, u).S; // the wrinkling law's tension-only stress
+      te[r] = std::max(te[r], principal2(S[0], S[1], S[2])[0]);
+    }
+#pragma omp critical
+    for (size_t r = 0; r < st.size(); ++r) {
+      stretch[r] = std::max(stretch[r], st[r]);
+      tension[r] = std::max(tension[r], te[r]);
+    }
+  }
 }
 
 std::vector<CellField> LargeDeflection::cellFields(const Eigen::VectorXd& u) const {

@@ -46,12 +46,18 @@ public:
   bool nonConservativeWrinkling() const override { return any_projection_; }
   /// The stable step at rest: a nonlinear law's instantaneous stiffness at J = 1
   double stableStep() const override;
-  /// The stable step at the committed history: a nonlinear region's
-  /// instantaneous stiffness elasticStiffness(J) taken at 9 values of J across
-  /// the range of J of its elements (the largest wave modulus over them),
-  /// times the region's largest J / lambda_min^2, plus its largest tension
-  /// J s1 / lambda_min^2 (reference length and mass)
-  double currentStableStep() const override;
+  /// The stable step at displacements @p u and the committed history, per
+  /// reference length and mass. A nonlinear region: its instantaneous
+  /// stiffness elasticStiffness(J) taken at 9 values of J across the range of
+  /// J of its elements (the largest wave modulus over them), times the
+  /// region's largest J / lambda_min^2, plus its largest tension
+  /// J s1 / lambda_min^2. A linear region (S = C_ps E + S0, or its tension-only
+  /// part): the wave modulus of C_ps times its largest lambda_max^2 plus its
+  /// largest principal S (P = F S: dP/dF = S + F C F^T), never above the rest
+  /// step
+  double currentStableStep(const Eigen::VectorXd& u) const override;
+  /// Stretch stiffens every law: the stable step follows the state.
+  bool stateDependentStep() const override { return true; }
   bool hasHistory() const override { return !history_offset_.empty(); }
   void beginStep(double t1, double dt) override {
     step_t1_ = t1;
@@ -107,6 +113,9 @@ private:
     double hA = 0; ///< thickness x reference area (m^3)
   };
   std::vector<Packed> packed_;
+  /// The columns @p F0, @p F1 of F = sum_a (X_a + u_a) dN_a^T of the packed
+  /// element @p p at displacements @p u (3 per node).
+  void deformation(const Packed& p, const double* u, double (&F0)[3], double (&F1)[3]) const;
   std::vector<double> x0_; // reference positions, 3 per node (m)
   SparseMatrix M_;
   bool any_projection_ = false, any_threshold_ = false;
@@ -122,6 +131,12 @@ private:
   void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
   /// @return the fastest wave speed of region @p r at rest, its pre-tension included (m/s)
   double restSpeed(size_t r) const;
+  /// Per linear region r at displacements @p u: raises @p stretch[r] to its
+  /// elements' largest lambda_max^2 and @p tension[r] to their largest
+  /// principal second Piola-Kirchhoff stress (Pa; the tension-only stress
+  /// where the section wrinkles).
+  void linearStretch(const Eigen::VectorXd& u, std::vector<double>& stretch,
+                     std::vector<double>& tension) const;
   /// @return the principal Cauchy stresses of element @p e in state @p st (its law's with history)
   Eigen::Vector2d cauchyPrincipal(int e, const FabricStress& st) const;
   /// Builds the history blocks of the nonlinear sections.

@@ -94,10 +94,17 @@ public:
   virtual void commitStep() {}
   /// @return the inelastic dissipation of the committed history since t = 0 (J)
   virtual double inelasticDissipation() const { return 0; }
-  /// @return the stable step at the committed history (s, as stableStep());
-  /// for a law whose stiffness changes with the state (GVBO stiffens in
-  /// compression) it changes as the run goes
-  virtual double currentStableStep() const { return stableStep(); }
+  /// @return the stable step at displacements @p u and the committed history
+  /// (s, as stableStep()): for a structure whose stiffness changes with the
+  /// state (a stretched fabric, GVBO stiffening in compression) it changes as
+  /// the run goes
+  virtual double currentStableStep(const Eigen::VectorXd& u) const {
+    (void)u;
+    return stableStep();
+  }
+  /// @return whether currentStableStep() can differ from stableStep(), so
+  /// that an explicit run re-evaluates it
+  virtual bool stateDependentStep() const { return hasHistory(); }
   /// Saves the committed history into @p h (keys of the structure's choosing).
   virtual void saveHistory(History& h) const { (void)h; }
   /// Restores what saveHistory() wrote, on a structure just built from the

@@ -162,8 +162,15 @@ Eigen::Vector3d SecondOrderSystem::dragSum(const StateForces& f) const {
   return s;
 }
 
-double SecondOrderSystem::stableStep(bool current) const {
-  const double dt = current ? structure_->currentStableStep() : structure_->stableStep();
+double SecondOrderSystem::stableStep() const {
+  return withSprings(structure_->stableStep());
+}
+
+double SecondOrderSystem::currentStableStep(const Eigen::VectorXd& u) const {
+  return withSprings(structure_->currentStableStep(u));
+}
+
+double SecondOrderSystem::withSprings(double dt) const {
   if (model_.springs.empty() && model_.contact.empty())
     return dt;
   double w2 = 0;

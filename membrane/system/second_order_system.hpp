@@ -122,14 +122,18 @@ public:
   Eigen::Vector3d dragSum(const StateForces& f) const;
 
   /// @return the stable step of central differences with the lumped mass
-  /// (s, no safety factor) at the structure's committed history when
-  /// @p current, else at its initial state: the structure's, with the
+  /// (s, no safety factor) at the initial state: the structure's, with the
   /// springs' and the contact penalties' stiffness (a spring k on a node of
   /// lumped mass m adds k / m to omega^2, so 2 / dt_s becomes
   /// sqrt((2 / dt_s)^2 + k / m))
-  double stableStep(bool current) const;
+  double stableStep() const;
+  /// @return stableStep() at displacements @p u and the structure's
+  /// committed history (Structure::currentStableStep)
+  double currentStableStep(const Eigen::VectorXd& u) const;
 
 private:
+  /// @return the structure's stable step @p dt with the springs and penalties
+  double withSprings(double dt) const;
   void addSurface(WorkKind kind, const LoadTime& when, const Eigen::VectorXd& u,
                   const Eigen::VectorXd& v, Eigen::VectorXd& f) const;
 
