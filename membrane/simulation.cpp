@@ -27,7 +27,7 @@ double explicitStep(const TimeSettings& ts, double stable) {
 
 Simulation::Simulation(const Model& model)
     : model_(model), system_(model), structure_(system_.structure()) {
-  stable_dt_ = system_.stableStep();
+  stable_dt_ = rest_dt_ = system_.stableStep();
   if (model.time.integrator == IntegratorKind::Explicit)
     integrator_ =
         std::make_unique<CentralDifference>(system_, explicitStep(model.time, stable_dt_));
@@ -90,8 +90,10 @@ void Simulation::adaptStep() {
     return;
   stable_dt_ = system_.currentStableStep(state_.u);
   double target = model_.time.safety * stable_dt_;
-  if (model_.time.dt > 0) // a given step is the largest the run takes
-    target = std::min(target, model_.time.dt);
+  // A given step is the largest the run takes; one above safety x the rest
+  // step (allowed up to the rest step) shrinks in proportion to the stable step.
+  if (model_.time.dt > 0)
+    target = std::min(model_.time.dt, std::max(target, model_.time.dt * (stable_dt_ / rest_dt_)));
   const double dt = integrator_->timeStep();
   // Shrink at once; grow back only by a margin, so that the step does not flutter.
   if (target < dt || target > kStepGrowth * dt) {
@@ -209,8 +211,10 @@ void Simulation::restore(const History& h, long last_step) {
                 "and elements (an older build of the program, or another mesh.renumber), its "
                 "state does not fit this run; run the case again without --restart");
   const double dt = historyEntry(h, "integrator/dt", 1)[0];
-  // A run whose step adapts to the state (stateDependentStep) may have changed it.
-  if (dt != integrator_->timeStep() && !structure_.stateDependentStep())
+  // An explicit run whose step adapts to the state may have changed it.
+  const bool adaptive =
+      model_.time.integrator == IntegratorKind::Explicit && structure_.stateDependentStep();
+  if (dt != integrator_->timeStep() && !adaptive)
     throw Error("checkpoint was written with the time step " + core::formatExact(dt) +
                 " s, this run's is " + core::formatExact(integrator_->timeStep()) +
                 " s (another case or another build of the program)");
@@ -236,9 +240,14 @@ void Simulation::restore(const History& h, long last_step) {
   restoreContact(h);
   structure_.restoreHistory(h);
   if (structure_.stateDependentStep()) {
-    stable_dt_ = historyEntry(h, "structure/stable_dt", 1)[0];
-    if (!(stable_dt_ > 0))
-      throw Error("checkpoint entry 'structure/stable_dt' must be > 0");
+    if (!h.count("structure/stable_dt") && !structure_.hasHistory()) {
+      // linear sections, written before their step followed the stretch
+      stable_dt_ = system_.currentStableStep(state_.u);
+    } else {
+      stable_dt_ = historyEntry(h, "structure/stable_dt", 1)[0];
+      if (!(stable_dt_ > 0))
+        throw Error("checkpoint entry 'structure/stable_dt' must be > 0");
+    }
   }
 }
 

@@ -137,6 +137,7 @@ private:
   FailureRecord failure_;
   std::vector<PenetrationPeak> penetration_; // per rigid surface
   double e0_ = 0, u0_ = 0, stable_dt_ = 0;
+  double rest_dt_ = 0; // the stable step of the initial state
 };
 
 } // namespace lamina::membrane

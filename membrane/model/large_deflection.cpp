@@ -348,8 +348,8 @@ double LargeDeflection::currentStableStep(const Eigen::VectorXd& u) const {
   for (size_t r = 0; r < nr; ++r) {
     const Section& s = body_.sections[r];
     if (s.isLinear()) {
-      // Never above the rest speed, and equal to it until the state is
-      // stiffer by more than round-off (the step then stays as it was).
+      // Never below the rest speed (the step never above the rest step), and
+      // equal to it until the state is stiffer by more than round-off.
       const double rest = restSpeed(r);
       const double now = std::sqrt(
           (stretch[r] * maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(s1[r], 0.0)) /
@@ -398,7 +398,7 @@ void LargeDeflection::linearStretch(const Eigen::VectorXd& u, std::vector<double
         S = stress(e, u).S; // the wrinkling law's tension-only stress
       te[r] = std::max(te[r], principal2(S[0], S[1], S[2])[0]);
     }
-#pragma omp critical
+#pragma omp critical(lamina_linear_stretch)
     for (size_t r = 0; r < st.size(); ++r) {
       stretch[r] = std::max(stretch[r], st[r]);
       tension[r] = std::max(tension[r], te[r]);

@@ -306,6 +306,22 @@ mode_velocity = 20.0
   EXPECT_LT(b.worst / b.scale, 1e-2);
 }
 
+// A given time.dt is the largest step the run takes and may be up to the rest
+// stable step: above safety x the stable step it is kept while the sheet stays
+// at rest (the re-evaluation every 10 steps must not cut it to safety x stable),
+// and scales with the stable step once the sheet stiffens.
+TEST(LargeDeflection, GivenStepAboveSafetyIsKeptAtRest) {
+  Model m = test::modelFromText(
+      fabricSquare(6, "prestress = 10.0\n[time]\nintegrator = \"explicit\"\nt_end = 1.0\n"
+                      "[[fixed]]\nnodes = \"edges\"\n"));
+  const double stable = Simulation(m).stableStep();
+  m.time.dt = 0.95 * stable;
+  Simulation sim(m);
+  for (int k = 0; k < 30; ++k)
+    sim.step();
+  EXPECT_EQ(sim.integrator().timeStep(), m.time.dt);
+}
+
 // Failure onset under a prescribed uniform stretch u_x = r X t (every DOF
 // driven, so the strain is exactly homogeneous): E11 = ((1 + r t)^2 - 1) / 2,
 // E22 = 0, the major Cauchy stress lambda C11 E11 (lambda = 1 + r t, area
