@@ -126,17 +126,25 @@ private:
   std::vector<double> history_;       // committed blocks
   mutable std::vector<double> trial_; // blocks of the last internalForce()
   double step_t1_ = 0, step_dt_ = 0;  // the step of the next internalForce()
-  std::vector<double> min_length_;    // per region: min element length 2 A / longest edge (m)
+  std::vector<double> length_;        // per element: its length 2 A / longest edge (m)
+  std::vector<double> min_length_;    // per region: its elements' least length (m)
   /// The force of a nonlinear element at F (trial history), into @p out (9).
   void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
   /// @return the fastest wave speed of region @p r at rest, its pre-tension included (m/s)
   double restSpeed(size_t r) const;
-  /// Per linear region r at displacements @p u: raises @p stretch[r] to its
-  /// elements' largest lambda_max^2 and @p tension[r] to their largest
-  /// principal second Piola-Kirchhoff stress (Pa; the tension-only stress
-  /// where the section wrinkles).
-  void linearStretch(const Eigen::VectorXd& u, std::vector<double>& stretch,
-                     std::vector<double>& tension) const;
+  /// The stress S = C_ps E + S0 (Pa) of an element of linear region @p r
+  /// whose F has columns @p F0, @p F1 (E the Green-Lagrange strain), relaxed
+  /// where the region's relaxed wrinkling law finds it not taut (a projection
+  /// region's is not projected); @p C receives C = F^T F [C11, C22, C12].
+  Eigen::Vector3d linearStress(int r, const double (&F0)[3], const double (&F1)[3],
+                               double (&C)[3]) const;
+  /// @return the least, over the elements of linear sections, of length /
+  /// wave speed at displacements @p u (s; infinite without such elements):
+  /// each element's speed from its own lambda_max^2 and principal second
+  /// Piola-Kirchhoff stress (the tension-only stress where it wrinkles),
+  /// never below its region's rest speed and equal to it until faster by
+  /// more than round-off
+  double linearStableStep(const Eigen::VectorXd& u) const;
   /// @return the principal Cauchy stresses of element @p e in state @p st (its law's with history)
   Eigen::Vector2d cauchyPrincipal(int e, const FabricStress& st) const;
   /// Builds the history blocks of the nonlinear sections.
