@@ -51,10 +51,9 @@ public:
   /// stiffness elasticStiffness(J) taken at 9 values of J across the range of
   /// J of its elements (the largest wave modulus over them), times the
   /// region's largest J / lambda_min^2, plus its largest tension
-  /// J s1 / lambda_min^2. A linear region (S = C_ps E + S0, or its tension-only
-  /// part): the wave modulus of C_ps times its largest lambda_max^2 plus its
-  /// largest principal S (P = F S: dP/dF = S + F C F^T), never above the rest
-  /// step
+  /// J s1 / lambda_min^2, with the region's shortest element. The elements
+  /// of linear sections each with its own speed (linearStableStep()); never
+  /// above the rest step
   double currentStableStep(const Eigen::VectorXd& u) const override;
   /// Stretch stiffens every law: the stable step follows the state.
   bool stateDependentStep() const override { return true; }
