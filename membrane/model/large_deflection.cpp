@@ -17,6 +17,15 @@ namespace lamina::membrane {
 namespace {
 /// Below this many elements the loops run on one thread.
 constexpr int kParallelElements = 4000;
+
+/// @return the larger eigenvalue of the symmetric [a c; c b]: principal2()'s
+/// major value without its hypot (which guards against overflow at extreme
+/// exponents, at several times the cost), for the stable step's two per
+/// element
+double majorValue(double a, double b, double c) {
+  const double h = 0.5 * (a - b);
+  return 0.5 * (a + b) + std::sqrt(h * h + c * c);
+}
 } // namespace
 
 LargeDeflection::LargeDeflection(const Body& body) : body_(body) {
@@ -399,8 +408,8 @@ double LargeDeflection::linearStableStep(const Eigen::VectorXd& u) const {
     if (s.tension_only && !relaxed_[static_cast<size_t>(r)] &&
         !positiveSemidefinite2(S[0], S[1], S[2]))
       S = stress(e, u).S; // the projection law's tension-only stress
-    const double stretch = std::max(principal2(C[0], C[1], C[2])[0], 1.0);
-    const double tension = std::max(principal2(S[0], S[1], S[2])[0], 0.0);
+    const double stretch = std::max(majorValue(C[0], C[1], C[2]), 1.0);
+    const double tension = std::max(majorValue(S[0], S[1], S[2]), 0.0);
     const double now = std::sqrt((stretch * modulus[r] + tension) / s.density);
     dt = std::min(dt, length_[e] / (now > rest[r] * (1 + 1e-12) ? now : rest[r]));
   }
