@@ -94,6 +94,10 @@ LargeDeflection::LargeDeflection(const Body& body) : body_(body) {
     for (int c = 0; c < 3; ++c)
       M_.insert(3 * i + c, 3 * i + c) = m[i];
   M_.makeCompressed();
+  for (size_t r = 0; r < body.sections.size(); ++r) {
+    wave_modulus_.push_back(maxWaveModulus(cps_[r], StrainKind::PlaneStress));
+    rest_speed_.push_back(restSpeed(r));
+  }
   length_.resize(ne);
   min_length_.assign(body.sections.size(), std::numeric_limits<double>::infinity());
   for (int e = 0; e < ne; ++e) {
@@ -330,16 +334,11 @@ double LargeDeflection::strainEnergy(const Eigen::VectorXd& u) const {
 double LargeDeflection::restSpeed(size_t r) const {
   // A tension T adds T / (rho h) to c^2 (the string's wave); take its largest principal value.
   const Eigen::Vector2d t = principal2(s0_[r][0], s0_[r][1], s0_[r][2]);
-  const double modulus = maxWaveModulus(cps_[r], StrainKind::PlaneStress) + std::max(t[0], 0.0);
-  return std::sqrt(modulus / body_.sections[r].density);
+  return std::sqrt((wave_modulus_[r] + std::max(t[0], 0.0)) / body_.sections[r].density);
 }
 
 double LargeDeflection::stableStep() const {
-  std::vector<double> speed;
-  for (size_t r = 0; r < body_.sections.size(); ++r) {
-    speed.push_back(restSpeed(r));
-  }
-  return criticalStep(body_.mesh, speed);
+  return criticalStep(body_.mesh, rest_speed_);
 }
 
 double LargeDeflection::currentStableStep(const Eigen::VectorXd& u) const {
@@ -387,12 +386,6 @@ double LargeDeflection::linearStableStep(const Eigen::VectorXd& u) const {
   // P = F S with S = C_ps E + S0 has dP/dF = S + F C_ps F^T: per reference
   // length and mass the fastest wave's modulus is M(C_ps) lambda_max^2 plus
   // the largest principal S (the string's wave of a tension).
-  const size_t nr = body_.sections.size();
-  std::vector<double> rest(nr), modulus(nr);
-  for (size_t r = 0; r < nr; ++r) {
-    rest[r] = restSpeed(r);
-    modulus[r] = maxWaveModulus(cps_[r], StrainKind::PlaneStress);
-  }
   const int ne = body_.mesh.numElements();
   double dt = std::numeric_limits<double>::infinity();
 #pragma omp parallel for schedule(static) reduction(min : dt) if (ne > kParallelElements)
@@ -410,8 +403,9 @@ double LargeDeflection::linearStableStep(const Eigen::VectorXd& u) const {
       S = stress(e, u).S; // the projection law's tension-only stress
     const double stretch = std::max(majorValue(C[0], C[1], C[2]), 1.0);
     const double tension = std::max(majorValue(S[0], S[1], S[2]), 0.0);
-    const double now = std::sqrt((stretch * modulus[r] + tension) / s.density);
-    dt = std::min(dt, length_[e] / (now > rest[r] * (1 + 1e-12) ? now : rest[r]));
+    const double now = std::sqrt((stretch * wave_modulus_[r] + tension) / s.density);
+    const double rest = rest_speed_[r];
+    dt = std::min(dt, length_[e] / (now > rest * (1 + 1e-12) ? now : rest));
   }
   return dt;
 }

@@ -125,11 +125,14 @@ private:
   std::vector<double> history_;       // committed blocks
   mutable std::vector<double> trial_; // blocks of the last internalForce()
   double step_t1_ = 0, step_dt_ = 0;  // the step of the next internalForce()
+  std::vector<double> wave_modulus_;  // per region: the largest wave modulus of C_ps (Pa)
+  std::vector<double> rest_speed_;    // per region: restSpeed() (m/s)
   std::vector<double> length_;        // per element: its length 2 A / longest edge (m)
   std::vector<double> min_length_;    // per region: its elements' least length (m)
   /// The force of a nonlinear element at F (trial history), into @p out (9).
   void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
-  /// @return the fastest wave speed of region @p r at rest, its pre-tension included (m/s)
+  /// @return the fastest wave speed of region @p r at rest, its pre-tension
+  /// included (m/s; from wave_modulus_, kept in rest_speed_)
   double restSpeed(size_t r) const;
   /// The stress S = C_ps E + S0 (Pa) of an element of linear region @p r
   /// whose F has columns @p F0, @p F1 (E the Green-Lagrange strain), relaxed
