@@ -9,29 +9,19 @@
 /// validation, an allocation) runs through ParallelErrors::run, and the
 /// first exception is rethrown after the region.
 ///
-/// LAMINA_VECTOR_CLONES: the build targets baseline x86-64 (SSE2, no FMA),
-/// which runs anywhere; a function carrying this attribute is compiled three
-/// times (x86-64-v4 = AVX-512, x86-64-v3 = AVX2 + FMA, baseline) and the
-/// loader picks the widest the CPU has (GCC function multi-versioning).
-/// Put it only on leaf functions without OpenMP pragmas (GCC outlines the
-/// body of a parallel region before cloning, so the clones would not reach
-/// it). Other compilers and targets get the plain function.
+/// LAMINA_VECTOR_CLONES (core/vector_clones.hpp): a leaf kernel compiled
+/// for several vector widths.
 ///
 /// ThreadsScope: a solver that picks its own team size sets it for its
 /// lifetime and gives the caller's back afterwards.
+
+#include "core/vector_clones.hpp"
 
 #include <omp.h>
 
 #include <atomic>
 #include <exception>
 #include <utility>
-
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define LAMINA_VECTOR_CLONES                                                                       \
-  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define LAMINA_VECTOR_CLONES
-#endif
 
 namespace lamina::core {
 

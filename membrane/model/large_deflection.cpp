@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/parallel.hpp"
+#include "membrane/model/law_lanes.hpp"
 #include "membrane/model/law_point.hpp"
 #include "membrane/model/relaxed_wrinkling.hpp"
 #include "membrane/model/stable_step.hpp"
@@ -145,6 +146,59 @@ void LargeDeflection::initHistory() {
       initLawPoint(*body_.sections[mesh.region_of[e]].law, elements_[e].frame.leftCols<2>(),
                    history_.data() + history_offset_[e]);
   trial_ = history_;
+  // groups of kLawLanes elements that step together: one GVBO section
+  const int ng = (ne + kLawLanes - 1) / kLawLanes;
+  std::vector<int> lanes(static_cast<size_t>(ng), -1);
+  bool any = false;
+  for (int c = 0; c < ng; ++c) {
+    const int e0 = c * kLawLanes, e1 = std::min(ne, e0 + kLawLanes), r = mesh.region_of[e0];
+    bool same = dynamic_cast<const materials::GvboLaw*>(body_.sections[r].law.get()) != nullptr;
+    for (int e = e0; e < e1 && same; ++e)
+      same = history_offset_[e] >= 0 && mesh.region_of[e] == r;
+    if (same) {
+      lanes[static_cast<size_t>(c)] = r;
+      any = true;
+    }
+  }
+  if (any)
+    lane_region_ = std::move(lanes);
+}
+
+void LargeDeflection::lawLaneForces(int e0, int n, int r, const double* u, double (*out)[9]) const {
+  const Section& s = body_.sections[r];
+  const auto& law = static_cast<const materials::GvboLaw&>(*s.law);
+  LawLaneStep io;
+  double pad[LawPoint::kLaw + materials::GvboState::kSize]; // the history of an unused lane
+  for (int k = 0; k < kLawLanes; ++k) {
+    const int e = e0 + std::min(k, n - 1); // unused lanes repeat the last element
+    double F0[3], F1[3];
+    deformation(packed_[e], u, F0, F1);
+    for (int c = 0; c < 3; ++c) {
+      io.F[c][k] = F0[c];
+      io.F[3 + c][k] = F1[c];
+    }
+    const Packed& p = packed_[e];
+    for (int j = 0; j < 6; ++j)
+      io.dN[j][k] = p.dN[j];
+    io.hA[k] = p.hA;
+    const long o = history_offset_[e];
+    io.block_n[k] = history_.data() + o;
+    io.block[k] = k < n ? trial_.data() + o : pad;
+  }
+  const unsigned taken = stepGvboLawPoints(law, s.tension_only, step_dt_, io);
+  for (int k = 0; k < n; ++k) {
+    if (taken >> k & 1u) {
+      for (int j = 0; j < 9; ++j)
+        out[k][j] = io.f[j][k];
+      continue;
+    }
+    Eigen::Matrix<double, 3, 2> F;
+    for (int c = 0; c < 3; ++c) {
+      F(c, 0) = io.F[c][k];
+      F(c, 1) = io.F[3 + c][k];
+    }
+    lawElementForce(e0 + k, F, out[k]);
+  }
 }
 
 void LargeDeflection::lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F,
@@ -160,6 +214,12 @@ void LargeDeflection::lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& 
                           s.name + "', " + s.material + ") at t = " + core::formatShort(step_t1_) +
                           " s: " + err.message());
   }
+  pk2Force(e, F, S, out);
+}
+
+void LargeDeflection::pk2Force(int e, const Eigen::Matrix<double, 3, 2>& F,
+                               const Eigen::Vector3d& S, double* out) const {
+  const Section& s = body_.sections[body_.mesh.region_of[e]];
   Eigen::Matrix2d Sm;
   Sm << S[0], S[2], S[2], S[1];
   const Eigen::Matrix<double, 3, 2> P = (s.thickness * elements_[e].area0) * (F * Sm);
@@ -293,13 +353,30 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
           out[3 * a + c] = P0[c] * p.dN[2 * a] + P1[c] * p.dN[2 * a + 1];
     };
     const int* slot = corner_slot_.data();
-#pragma omp for schedule(static)
-    for (int e = 0; e < ne; ++e) {
-      double out[9] = {}; // stays zero when a law's failure is recorded in errors
-      force(e, out);
-      for (int a = 0; a < 3; ++a) // stores in the gather's order, which streams its reads
+    auto store = [&](int e, const double* out) { // the corner forces into their slots
+      for (int a = 0; a < 3; ++a)                // in the gather's order, which streams its reads
         for (int c = 0; c < 3; ++c)
           fe[3 * static_cast<size_t>(slot[3 * static_cast<size_t>(e) + a]) + c] = out[3 * a + c];
+    };
+    if (lane_region_.empty()) {
+#pragma omp for schedule(static)
+      for (int e = 0; e < ne; ++e) {
+        double out[9] = {}; // stays zero when a law's failure is recorded in errors
+        force(e, out), store(e, out);
+      }
+    } else { // groups of kLawLanes elements, GVBO groups stepped together
+#pragma omp for schedule(static)
+      for (int g = 0; g < static_cast<int>(lane_region_.size()); ++g) {
+        const int e0 = g * kLawLanes, n = std::min(kLawLanes, ne - e0);
+        double out[kLawLanes][9] = {};
+        if (lane_region_[static_cast<size_t>(g)] >= 0)
+          errors.run([&] { lawLaneForces(e0, n, lane_region_[static_cast<size_t>(g)], up, out); });
+        else
+          for (int k = 0; k < n; ++k)
+            force(e0 + k, out[k]);
+        for (int k = 0; k < n; ++k)
+          store(e0 + k, out[k]);
+      }
     }
 #pragma omp for schedule(static)
     for (int i = 0; i < n; ++i) {

@@ -129,8 +129,20 @@ private:
   std::vector<double> rest_speed_;    // per region: restSpeed() (m/s)
   std::vector<double> length_;        // per element: its length 2 A / longest edge (m)
   std::vector<double> min_length_;    // per region: its elements' least length (m)
+  /// Per group of kLawLanes consecutive elements (law_lanes.hpp): their
+  /// region when all of them hold a history of one GVBO section, else -1;
+  /// empty when no group does.
+  std::vector<int> lane_region_;
   /// The force of a nonlinear element at F (trial history), into @p out (9).
   void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
+  /// The nodal forces h0 A0 F S dN_a of element @p e at F with the second
+  /// Piola-Kirchhoff stress @p S [S11, S22, S12], into @p out (9).
+  void pk2Force(int e, const Eigen::Matrix<double, 3, 2>& F, const Eigen::Vector3d& S,
+                double* out) const;
+  /// The forces of the @p n (<= kLawLanes) elements from @p e0 of a lane
+  /// group of GVBO region @p r at displacements @p u, stepped together
+  /// (stepGvboLawPoints; the lanes it hands back by lawElementForce).
+  void lawLaneForces(int e0, int n, int r, const double* u, double (*out)[9]) const;
   /// @return the fastest wave speed of region @p r at rest, its pre-tension
   /// included (m/s; from wave_modulus_, kept in rest_speed_)
   double restSpeed(size_t r) const;
