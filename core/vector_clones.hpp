@@ -40,6 +40,15 @@ extern "C" double exp(double) noexcept __attribute__((simd("notinbranch")));
 extern "C" double log(double) noexcept __attribute__((simd("notinbranch")));
 #endif
 
+/// LAMINA_LANES before a loop over lanes that calls exp or log: vectorize it
+/// (OpenMP SIMD, in a file compiled with -fopenmp-simd); without it GCC may
+/// unroll the loop into eight scalar calls first.
+#if defined(_OPENMP) || defined(__GNUC__)
+#define LAMINA_LANES _Pragma("omp simd")
+#else
+#define LAMINA_LANES
+#endif
+
 #if defined(__GNUC__)
 #define LAMINA_CLONE_INLINE inline __attribute__((always_inline))
 #else

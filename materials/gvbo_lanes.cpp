@@ -29,11 +29,13 @@ struct Moduli {
     const double lambda0 = g.E0 * g.nu0 / ((1 + g.nu0) * (1 - 2 * g.nu0));
     const double G0 = g.E0 / (2 * (1 + g.nu0));
     double lnJ[W], Jp[W];
+    LAMINA_LANES
     for (int l = 0; l < W; ++l) {
       const Mask good = (J[l] > 0) & finiteLane(J[l]);
       ok[l] = ok[l] & good;
       lnJ[l] = std::log(good ? J[l] : 1.0);
     }
+    LAMINA_LANES
     for (int l = 0; l < W; ++l)
       Jp[l] = std::exp(g.p * lnJ[l]);
     for (int l = 0; l < W; ++l) {
@@ -120,6 +122,7 @@ LAMINA_CLONE_INLINE double contract4(const Lanes4& a, const Lanes4& b, int l) {
 LAMINA_CLONE_INLINE void evaluate(const GvboParameters& p, double dt, const StepLanes& st,
                                   const StateN& sn, const double* Gamma, ScalarLanes& s) {
   double ex[W], base[W], kinv[W];
+  LAMINA_LANES
   for (int l = 0; l < W; ++l)
     ex[l] = std::exp(-p.a3 * Gamma[l]);
   for (int l = 0; l < W; ++l)

@@ -185,6 +185,16 @@ void LargeDeflection::lawLaneForces(int e0, int n, int r, const double* u, doubl
     io.block_n[k] = history_.data() + o;
     io.block[k] = k < n ? trial_.data() + o : pad;
   }
+  // the next group's history blocks are contiguous with these: fetch them
+  // while this group computes (the step is otherwise bound by their latency)
+  if (e0 + 2 * kLawLanes <= static_cast<int>(history_offset_.size())) {
+    const long o0 = history_offset_[e0 + kLawLanes], o1 = history_offset_[e0 + 2 * kLawLanes - 1];
+    if (o0 >= 0 && o1 > o0)
+      for (long o = o0; o < o1 + LawPoint::size(law); o += 8) {
+        __builtin_prefetch(history_.data() + o, 0);
+        __builtin_prefetch(trial_.data() + o, 1);
+      }
+  }
   const unsigned taken = stepGvboLawPoints(law, s.tension_only, step_dt_, io);
   for (int k = 0; k < n; ++k) {
     if (taken >> k & 1u) {
