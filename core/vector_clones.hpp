@@ -1,7 +1,9 @@
 #pragma once
 /// @file vector_clones.hpp
-/// @brief The attribute that compiles a leaf kernel for several vector
-/// widths, and the one that keeps its helpers inside each width.
+/// @brief Kernels over lanes of points, vectorized for the CPU at hand: the
+/// attribute that compiles a leaf kernel for several vector widths, the one
+/// that keeps its helpers inside each width, the loop pragma and the flag
+/// type of such kernels.
 ///
 /// LAMINA_VECTOR_CLONES: the build targets baseline x86-64 (SSE2, no FMA),
 /// which runs anywhere; a function carrying this attribute is compiled three
@@ -15,14 +17,18 @@
 /// for the baseline, unless it is inlined into each clone; this attribute
 /// (always_inline) makes sure it is.
 ///
-/// Elementary functions in such a loop: glibc's vector math library
-/// (libmvec, linked through libm) has exp and log for each vector width
-/// (2, 4, 8 lanes; at most 4 ulp from the correctly rounded value, against
-/// the scalar functions' 1). Declared here as SIMD variants of exp and log,
-/// a loop of std::exp or std::log calls vectorizes into calls of the
-/// variant of the clone's width, in a file compiled with -fno-math-errno
-/// (a function that may set errno cannot be vectorized); elsewhere nothing
-/// changes.
+/// LAMINA_LANES before a loop over lanes that calls exp or log
+/// (core/vector_math.hpp): vectorize it (OpenMP SIMD, in a file compiled
+/// with -fopenmp-simd); without it GCC may unroll the loop into scalar calls.
+///
+/// A loop over lanes vectorizes when it has no inner loop, no
+/// short-circuit && or || and no one-byte bools beside doubles: flags are
+/// LaneMask, finiteness is finiteLane, and a file of such loops is compiled
+/// with -fno-trapping-math (a ternary with a division is then a select).
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
 #define LAMINA_VECTOR_CLONES                                                                       \
@@ -31,39 +37,22 @@
 #define LAMINA_VECTOR_CLONES
 #endif
 
-#include <cmath>
-#include <cstdint>
-#include <limits>
-
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__)
-extern "C" double exp(double) noexcept __attribute__((simd("notinbranch")));
-extern "C" double log(double) noexcept __attribute__((simd("notinbranch")));
-#endif
-
-/// LAMINA_LANES before a loop over lanes that calls exp or log: vectorize it
-/// (OpenMP SIMD, in a file compiled with -fopenmp-simd); without it GCC may
-/// unroll the loop into eight scalar calls first.
-#if defined(_OPENMP) || defined(__GNUC__)
-#define LAMINA_LANES _Pragma("omp simd")
-#else
-#define LAMINA_LANES
-#endif
-
 #if defined(__GNUC__)
 #define LAMINA_CLONE_INLINE inline __attribute__((always_inline))
+#define LAMINA_LANES _Pragma("omp simd")
 #else
 #define LAMINA_CLONE_INLINE inline
+#define LAMINA_LANES
 #endif
 
 namespace lamina::core {
 
-/// A lane's flag, 0 or 1, as wide as a double: a loop over lanes that mixes
-/// flags and doubles vectorizes (one-byte bools beside doubles do not).
+/// A lane's flag, 0 or 1, as wide as a double.
 using LaneMask = std::int64_t;
 
-/// @return whether @p x is finite, in a form that vectorizes (std::isfinite
-/// does not)
-LAMINA_CLONE_INLINE bool finiteLane(double x) {
+/// @return 1 where @p x is finite, else 0, in a form that vectorizes
+/// (std::isfinite does not)
+LAMINA_CLONE_INLINE LaneMask finiteLane(double x) {
   return std::abs(x) <= std::numeric_limits<double>::max();
 }
 

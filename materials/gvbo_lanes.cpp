@@ -1,6 +1,6 @@
 #include "materials/gvbo_lanes.hpp"
 
-#include "core/vector_clones.hpp"
+#include "core/vector_math.hpp"
 #include "materials/gvbo_law.hpp"
 #include "materials/plane_stress.hpp"
 
@@ -21,6 +21,17 @@ const double kSqrt23 = std::sqrt(2.0 / 3.0);
 using Mask = core::LaneMask;
 using core::finiteLane;
 
+/// ln x and x^p = exp(p ln x) of every lane. A kernel of its own: inlined
+/// at two places of the step, GCC unrolled one copy into scalar calls.
+LAMINA_VECTOR_CLONES __attribute__((noinline)) void logAndPower(const double* x, double p,
+                                                                double* lnx, double* xp) {
+  LAMINA_LANES
+  for (int l = 0; l < W; ++l) {
+    lnx[l] = std::log(x[l]);
+    xp[l] = std::exp(p * lnx[l]);
+  }
+}
+
 /// The moduli at J (gvboModuli) on every lane; @p ok cleared where J is not
 /// a positive finite number (that lane then computes at J = 1).
 struct Moduli {
@@ -28,16 +39,13 @@ struct Moduli {
   LAMINA_CLONE_INLINE void at(const GvboParameters& g, const double* J, Mask* ok) {
     const double lambda0 = g.E0 * g.nu0 / ((1 + g.nu0) * (1 - 2 * g.nu0));
     const double G0 = g.E0 / (2 * (1 + g.nu0));
-    double lnJ[W], Jp[W];
-    LAMINA_LANES
+    double Jg[W], lnJ[W], Jp[W];
     for (int l = 0; l < W; ++l) {
       const Mask good = (J[l] > 0) & finiteLane(J[l]);
       ok[l] = ok[l] & good;
-      lnJ[l] = std::log(good ? J[l] : 1.0);
+      Jg[l] = good ? J[l] : 1.0;
     }
-    LAMINA_LANES
-    for (int l = 0; l < W; ++l)
-      Jp[l] = std::exp(g.p * lnJ[l]);
+    logAndPower(Jg, g.p, lnJ, Jp); // J^p, one logarithm for both terms
     for (int l = 0; l < W; ++l) {
       lambda[l] = std::max(lambda0, Jp[l] * lambda0);
       G[l] = std::max(G0, Jp[l] * (G0 - lambda0 * lnJ[l]));
