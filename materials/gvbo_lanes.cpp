@@ -8,8 +8,10 @@
 #include <cmath>
 
 // Every formula below is GvboLaw::planeStressStep's (gvbo_law.cpp), written
-// per lane with the same order of operations; the comments name the
-// function of gvbo_law.cpp or gvbo.cpp that each block mirrors.
+// per lane; the comments name the function of gvbo_law.cpp or gvbo.cpp that
+// each block mirrors. A divisor used more than once is inverted once (a
+// vector division costs about ten multiplications), so the lanes agree
+// with the one-point step to round-off, not to the bit.
 
 namespace lamina::materials {
 
@@ -69,31 +71,31 @@ using Lanes4 = double[4][W];
 struct StepLanes {
   Moduli m;
   double K[W], Etb[W], k2b[W], dth[W];
+  double invE[W], invk2b[W]; // 1 / E, 1 / k2b
   Lanes4 h, W0, V;
 };
 
 /// The scalars of evaluate() at Gamma, per lane.
 struct ScalarLanes {
   double c[W], dc[W], phi[W], dphi[W], A[W], a[W], da[W], D[W], dD[W], normW[W], r[W], dr[W];
+  double invD[W], invNormW[W]; // 1 / D, 1 / |W| (0 where |W| = 0)
   Lanes4 Wv, dW;
 };
 
-/// x^-n as negativePower() of gvbo_law.cpp (by multiplication for whole n up to 8).
-LAMINA_CLONE_INLINE void negativePowers(const double* x, double n, double* out) {
+/// x^n of every lane: by multiplication for whole n up to 8 (as
+/// negativePower() of gvbo_law.cpp, whose x^-n is 1 over it), else std::pow.
+LAMINA_CLONE_INLINE void powers(const double* x, double n, double* out) {
   if (n == std::floor(n) && n >= 1 && n <= 8) {
     const int k = static_cast<int>(n);
-    double r[W];
     for (int l = 0; l < W; ++l)
-      r[l] = x[l];
+      out[l] = x[l];
     for (int i = 1; i < k; ++i)
       for (int l = 0; l < W; ++l)
-        r[l] *= x[l];
-    for (int l = 0; l < W; ++l)
-      out[l] = 1 / r[l];
+        out[l] *= x[l];
     return;
   }
   for (int l = 0; l < W; ++l)
-    out[l] = std::pow(x[l], -n);
+    out[l] = std::pow(x[l], n);
 }
 
 /// prepare() at J with the tensor increment (de0, de1, z, de3), per lane.
@@ -101,13 +103,16 @@ LAMINA_CLONE_INLINE void prepare(const GvboParameters& p, const double* J, const
                                  const double* de1, const double* z, const double* de3,
                                  const StateN& sn, StepLanes& st, Mask* ok) {
   st.m.at(p, J, ok);
+  const double k3 = p.k3 / (p.Em - p.E0);
   for (int l = 0; l < W; ++l) {
     const double E = st.m.E[l], G = st.m.G[l];
-    st.K[l] = st.m.lambda[l] + 2 * G / 3;
-    st.Etb[l] = 2.0 / 3.0 * p.Et / (1 - p.Et / E);
-    st.k2b[l] = p.k2 + p.k3 * (E - p.E0) / (p.Em - p.E0);
+    st.invE[l] = 1 / E;
+    st.K[l] = st.m.lambda[l] + (2.0 / 3.0) * G;
+    st.Etb[l] = 2.0 / 3.0 * p.Et / (1 - p.Et * st.invE[l]);
+    st.k2b[l] = p.k2 + k3 * (E - p.E0);
+    st.invk2b[l] = 1 / st.k2b[l];
     st.dth[l] = de0[l] + de1[l] + z[l];
-    const double mean = (de0[l] + de1[l] + z[l]) / 3;
+    const double mean = st.dth[l] * (1.0 / 3.0);
     const double twoG = 2 * G;
     st.h[0][l] = twoG * (de0[l] - mean);
     st.h[1][l] = twoG * (de1[l] - mean);
@@ -129,27 +134,28 @@ LAMINA_CLONE_INLINE double contract4(const Lanes4& a, const Lanes4& b, int l) {
 /// evaluate() at @p Gamma, per lane.
 LAMINA_CLONE_INLINE void evaluate(const GvboParameters& p, double dt, const StepLanes& st,
                                   const StateN& sn, const double* Gamma, ScalarLanes& s) {
-  double ex[W], base[W], kinv[W];
+  double ex[W], base[W], kn[W];
   LAMINA_LANES
   for (int l = 0; l < W; ++l)
     ex[l] = std::exp(-p.a3 * Gamma[l]);
   for (int l = 0; l < W; ++l)
-    base[l] = 1 + Gamma[l] / st.k2b[l];
-  negativePowers(base, p.k4, kinv);
+    base[l] = 1 + Gamma[l] * st.invk2b[l];
+  powers(base, p.k4, kn); // k = k1 kn^-1
+  const double dtk1 = dt / p.k1, da21 = -p.a3 * (p.a2 - p.a1);
   for (int l = 0; l < W; ++l) {
-    const double E = st.m.E[l], G = st.m.G[l], g = Gamma[l];
+    const double E = st.m.E[l], G = st.m.G[l], g = Gamma[l], invE = st.invE[l];
     const double psi = p.a1 + (p.a2 - p.a1) * ex[l];
-    s.c[l] = psi / E;
-    s.dc[l] = -p.a3 * (p.a2 - p.a1) * ex[l] / E;
-    const double k = p.k1 * kinv[l];
-    s.phi[l] = dt / (E * k);
+    s.c[l] = psi * invE;
+    s.dc[l] = da21 * ex[l] * invE;
+    s.phi[l] = dtk1 * kn[l] * invE; // dt / (E k)
     s.dphi[l] = s.phi[l] * p.k4 / (st.k2b[l] + g);
     const double q = g * s.phi[l], dq = s.phi[l] + g * s.dphi[l];
-    const double den = 1 + p.Ac * q;
-    s.A[l] = (sn.A[l] + p.Ac * p.Af * q) / den;
-    const double dA = p.Ac * (p.Af - sn.A[l]) * dq / (den * den);
-    const double beta = q * E / s.A[l];
-    const double dbeta = E * (dq * s.A[l] - q * dA) / (s.A[l] * s.A[l]);
+    const double invden = 1 / (1 + p.Ac * q);
+    s.A[l] = (sn.A[l] + p.Ac * p.Af * q) * invden;
+    const double dA = p.Ac * (p.Af - sn.A[l]) * dq * invden * invden;
+    const double invA = 1 / s.A[l];
+    const double beta = q * E * invA;
+    const double dbeta = E * (dq * s.A[l] - q * dA) * invA * invA;
     s.a[l] = s.c[l] * beta;
     const double da = s.dc[l] * beta + s.c[l] * dbeta;
     const double G3 = 3 * G, EmG = E - G3, phi = s.phi[l], dphi = s.dphi[l];
@@ -157,6 +163,7 @@ LAMINA_CLONE_INLINE void evaluate(const GvboParameters& p, double dt, const Step
     s.D[l] = (1 + a) * (1 + G3 * phi) + c * EmG * phi + (a + 1 - c) * Etb * phi;
     s.dD[l] = da * (1 + G3 * phi) + (1 + a) * G3 * dphi + dc * EmG * phi + c * EmG * dphi +
               (da - dc) * Etb * phi + (a + 1 - c) * Etb * dphi;
+    s.invD[l] = 1 / s.D[l];
     s.da[l] = da;
   }
   for (int i = 0; i < 4; ++i)
@@ -167,9 +174,9 @@ LAMINA_CLONE_INLINE void evaluate(const GvboParameters& p, double dt, const Step
   for (int l = 0; l < W; ++l) {
     const double g = Gamma[l];
     s.normW[l] = std::sqrt(std::max(contract4(s.Wv, s.Wv, l), 0.0));
+    s.invNormW[l] = s.normW[l] > 0 ? 1 / s.normW[l] : 0.0;
     s.r[l] = g * s.D[l] - kSqrt23 * s.normW[l];
-    s.dr[l] = s.D[l] + g * s.dD[l] -
-              (s.normW[l] > 0 ? kSqrt23 * contract4(s.Wv, s.dW, l) / s.normW[l] : 0.0);
+    s.dr[l] = s.D[l] + g * s.dD[l] - kSqrt23 * contract4(s.Wv, s.dW, l) * s.invNormW[l];
   }
 }
 
@@ -245,7 +252,7 @@ LAMINA_CLONE_INLINE void stressAt(const GvboLanes& io, const StepLanes& st, cons
   const StateN& sn = nw.sn;
   for (int i = 0; i < 4; ++i)
     for (int l = 0; l < W; ++l) {
-      at.x[i][l] = s.Wv[i][l] / s.D[l];
+      at.x[i][l] = s.Wv[i][l] * s.invD[l];
       at.dev[i][l] = sn.s[i][l] + st.h[i][l] - 3 * st.m.G[l] * s.phi[l] * at.x[i][l];
       at.sig[i][l] = at.dev[i][l];
     }
@@ -302,15 +309,15 @@ LAMINA_CLONE_INLINE void newtonStep(const StepLanes& st, const ScalarLanes& s, c
   for (int l = 0; l < W; ++l) {
     const double G = st.m.G[l], w = (1 - s.c[l] + s.a[l]) * 2 * G;
     const double xzz = at.x[2][l];
-    const double a11 = st.K[l] + 4.0 / 3.0 * G - 3 * G * s.phi[l] * w * (2.0 / 3.0) / s.D[l];
+    const double a11 = st.K[l] + 4.0 / 3.0 * G - 3 * G * s.phi[l] * w * (2.0 / 3.0) * s.invD[l];
     const double a12 =
-        -3 * G * (s.dphi[l] * xzz + s.phi[l] * (s.dW[2][l] - xzz * s.dD[l]) / s.D[l]);
-    const double a21 = s.normW[l] > 0 ? -kSqrt23 * w * s.Wv[2][l] / s.normW[l] : 0.0;
+        -3 * G * (s.dphi[l] * xzz + s.phi[l] * (s.dW[2][l] - xzz * s.dD[l]) * s.invD[l]);
+    const double a21 = -kSqrt23 * w * s.Wv[2][l] * s.invNormW[l];
     const double a22 = s.dr[l];
-    const double det = a11 * a22 - a12 * a21;
+    const double det = a11 * a22 - a12 * a21, invdet = 1 / det;
     good[l] = nw.active[l] & (std::abs(det) > 0) & finiteLane(det);
-    dz[l] = (a22 * at.sig[2][l] - a12 * s.r[l]) / det;
-    dG[l] = (a11 * s.r[l] - a21 * at.sig[2][l]) / det;
+    dz[l] = (a22 * at.sig[2][l] - a12 * s.r[l]) * invdet;
+    dG[l] = (a11 * s.r[l] - a21 * at.sig[2][l]) * invdet;
     far = far | (good[l] & (std::abs(nw.z[l] - dz[l]) > kMaxThicknessIncrement));
   }
   if (far) // rare: a shorter step along the Newton direction
@@ -356,7 +363,7 @@ unsigned gvboPlaneStressLanes(const GvboParameters& p, double dt, double toleran
       evaluate(p, dt, st, nw.sn, zero, s);
       for (int l = 0; l < W; ++l)
         if (!nw.guessed[l])
-          nw.Gamma[l] = s.normW[l] > 0 ? std::max(kSqrt23 * s.normW[l] / s.D[l], 1e-300) : 0.0;
+          nw.Gamma[l] = s.normW[l] > 0 ? std::max(kSqrt23 * s.normW[l] * s.invD[l], 1e-300) : 0.0;
     }
     evaluate(p, dt, st, nw.sn, nw.Gamma, s);
     stressAt(io, st, s, tolerance, nw, at);

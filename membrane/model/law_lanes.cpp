@@ -64,8 +64,11 @@ LAMINA_CLONE_INLINE void polarIterate(Mat3& X, const Mat3& Xit, const double* de
       nX[l] += X[k][l] * X[k][l];
     }
   // scaling only far from R: near it, it would only add round-off
-  for (int l = 0; l < W; ++l)
+  double ig[W];
+  for (int l = 0; l < W; ++l) {
     g[l] = d2[l] > 1e-4 ? std::sqrt(std::sqrt(nXit[l]) / std::sqrt(nX[l])) : 1.0;
+    ig[l] = 1 / g[l];
+  }
   Mask live[W];
   for (int l = 0; l < W; ++l) {
     live[l] = active[l] & (det[l] > 0);
@@ -73,7 +76,7 @@ LAMINA_CLONE_INLINE void polarIterate(Mat3& X, const Mat3& Xit, const double* de
   }
   for (int k = 0; k < 9; ++k)
     for (int l = 0; l < W; ++l) {
-      const double next = 0.5 * (g[l] * X[k][l] + Xit[k][l] / g[l]);
+      const double next = 0.5 * (g[l] * X[k][l] + Xit[k][l] * ig[l]);
       const double d = next - X[k][l];
       step2[l] += d * d;
       X[k][l] = live[l] ? next : X[k][l];
@@ -135,9 +138,11 @@ LAMINA_CLONE_INLINE void completed(const double (&F)[6][W], Mat3& F3, Mask* ok) 
   for (int k = 0; k < 6; ++k)
     for (int l = 0; l < W; ++l)
       F3[k][l] = F[k][l];
+  for (int l = 0; l < W; ++l)
+    norm[l] = 1 / norm[l];
   for (int k = 6; k < 9; ++k)
     for (int l = 0; l < W; ++l)
-      F3[k][l] /= norm[l];
+      F3[k][l] *= norm[l];
 }
 
 /// The in-plane components [xx, yy, xy] (engineering) of the rotation-free
