@@ -344,6 +344,11 @@ LAMINA_VECTOR_CLONES
 unsigned gvboPlaneStressLanes(const GvboParameters& p, double dt, double tolerance, GvboLanes& io) {
   Newton nw;
   start(p, dt, io, nw);
+  for (int l = 0; l < W; ++l) { // defined outputs on the lanes not taken
+    io.lambda3[l] = 1;
+    for (int i = 0; i < 4; ++i)
+      io.sigma[i][l] = 0;
+  }
   unsigned taken = 0;
   StepLanes st;
   ScalarLanes s;

@@ -7,11 +7,14 @@
 /// moduli at the J of each iterate and the same two convergence tests, run
 /// in lockstep over the lanes: every lane's arithmetic is an independent
 /// loop over the lanes, so the compiler vectorizes across points (the widest
-/// vectors the CPU has: LAMINA_VECTOR_CLONES, core/parallel.hpp), and a lane
-/// stops updating at the iterate where its own tests hold. Each lane takes
-/// the iterates and tests that the one-point step takes, so the results agree
-/// with it to round-off (vector code may contract a * b + c into one rounding;
-/// the elementary functions are the library's, one lane at a time).
+/// vectors the CPU has: LAMINA_VECTOR_CLONES, core/vector_clones.hpp), and a
+/// lane stops updating at the iterate where its own tests hold. Each lane
+/// takes the iterates and tests that the one-point step takes, so the
+/// results agree with it to round-off (vector code may contract a * b + c
+/// into one rounding, a divisor used twice is inverted once, exp and log are
+/// glibc's vector variants, core/vector_math.hpp); near a test's threshold
+/// that round-off can stop a lane one iterate apart from the one-point step,
+/// a difference of the size of the convergence tolerance.
 ///
 /// A lane is not taken (its bit is clear in the returned mask, and the
 /// caller steps that point with the one-point path, which has the safeguards

@@ -189,8 +189,9 @@ void LargeDeflection::lawLaneForces(int e0, int n, int r, const double* u, doubl
   // while this group computes (the step is otherwise bound by their latency)
   if (e0 + 2 * kLawLanes <= static_cast<int>(history_offset_.size())) {
     const long o0 = history_offset_[e0 + kLawLanes], o1 = history_offset_[e0 + 2 * kLawLanes - 1];
+    const long end = std::min(o1 + LawPoint::size(law), static_cast<long>(history_.size()));
     if (o0 >= 0 && o1 > o0)
-      for (long o = o0; o < o1 + LawPoint::size(law); o += 8) {
+      for (long o = o0; o < end; o += 8) { // 8 doubles: one cache line
         __builtin_prefetch(history_.data() + o, 0);
         __builtin_prefetch(trial_.data() + o, 1);
       }

@@ -5,14 +5,16 @@
 /// elements.
 ///
 /// Every part of the one-element step is taken per lane in lockstep loops
-/// that the compiler vectorizes (LAMINA_VECTOR_CLONES, core/parallel.hpp):
+/// that the compiler vectorizes (LAMINA_VECTOR_CLONES, core/vector_clones.hpp):
 /// the completed deformation gradients, the midpoint (Hughes-Winget)
 /// increment with the polar rotation of the midpoint gradient (Newton's
 /// iteration, each lane stopping at its own converged iterate), the law's
 /// plane-stress step (materials/gvbo_lanes.hpp), the energy terms, the new
-/// history and the second Piola-Kirchhoff stress. Each lane follows the
-/// one-element step's formulas and iterates, so the two agree to round-off
-/// (tests/membrane/law_lanes_test.cpp).
+/// history, the second Piola-Kirchhoff stress and the nodal forces. Each
+/// lane follows the one-element step's formulas and iterates, so the two
+/// agree to round-off (tests/membrane/law_lanes_test.cpp); near a threshold
+/// (a convergence test, a tension-only element whose minor stress is about
+/// zero) the round-off can tip a lane to the neighbouring iterate or branch.
 ///
 /// Lanes that meet a case the lanes do not take are handed back (their bit
 /// is clear in the returned mask) and the caller steps them with
