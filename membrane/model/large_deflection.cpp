@@ -171,13 +171,13 @@ void LargeDeflection::lawLaneForces(int e0, int n, int r, const double* u, doubl
   double pad[LawPoint::kLaw + materials::GvboState::kSize]; // the history of an unused lane
   for (int k = 0; k < kLawLanes; ++k) {
     const int e = e0 + std::min(k, n - 1); // unused lanes repeat the last element
+    const Packed& p = packed_[e];
     double F0[3], F1[3];
-    deformation(packed_[e], u, F0, F1);
+    deformation(p, u, F0, F1);
     for (int c = 0; c < 3; ++c) {
       io.F[c][k] = F0[c];
       io.F[3 + c][k] = F1[c];
     }
-    const Packed& p = packed_[e];
     for (int j = 0; j < 6; ++j)
       io.dN[j][k] = p.dN[j];
     io.hA[k] = p.hA;
@@ -225,12 +225,6 @@ void LargeDeflection::lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& 
                           s.name + "', " + s.material + ") at t = " + core::formatShort(step_t1_) +
                           " s: " + err.message());
   }
-  pk2Force(e, F, S, out);
-}
-
-void LargeDeflection::pk2Force(int e, const Eigen::Matrix<double, 3, 2>& F,
-                               const Eigen::Vector3d& S, double* out) const {
-  const Section& s = body_.sections[body_.mesh.region_of[e]];
   Eigen::Matrix2d Sm;
   Sm << S[0], S[2], S[2], S[1];
   const Eigen::Matrix<double, 3, 2> P = (s.thickness * elements_[e].area0) * (F * Sm);

@@ -135,10 +135,6 @@ private:
   std::vector<int> lane_region_;
   /// The force of a nonlinear element at F (trial history), into @p out (9).
   void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
-  /// The nodal forces h0 A0 F S dN_a of element @p e at F with the second
-  /// Piola-Kirchhoff stress @p S [S11, S22, S12], into @p out (9).
-  void pk2Force(int e, const Eigen::Matrix<double, 3, 2>& F, const Eigen::Vector3d& S,
-                double* out) const;
   /// The forces of the @p n (<= kLawLanes) elements from @p e0 of a lane
   /// group of GVBO region @p r at displacements @p u, stepped together
   /// (stepGvboLawPoints; the lanes it hands back by lawElementForce).

@@ -87,12 +87,14 @@ LAMINA_CLONE_INLINE void polarIterate(Mat3& X, const Mat3& Xit, const double* de
   }
 }
 
-/// The orthogonal polar factor of every lane's @p F (polarRotation of
+/// The orthogonal polar factor of every lane's @p F, given @p FinvT = F^-T
+/// and @p detF = det F (polarRotation of
 /// kinematics.cpp: Newton's iteration with the Frobenius scaling far from
 /// R, each lane stopping at its own converged iterate); @p ok cleared where
 /// that iteration does not take the lane (det F <= 0 on the way, or no
 /// convergence in 40 iterations: the one-element step takes the SVD).
-LAMINA_CLONE_INLINE void polarRotations(const Mat3& F, Mat3& R, Mask* ok) {
+LAMINA_CLONE_INLINE void polarRotations(const Mat3& F, const Mat3& FinvT, const double* detF,
+                                        Mat3& R, Mask* ok) {
   Mat3 X, Xit, last;
   Mask active[W], done[W];
   double det[W];
@@ -100,10 +102,11 @@ LAMINA_CLONE_INLINE void polarRotations(const Mat3& F, Mat3& R, Mask* ok) {
     for (int l = 0; l < W; ++l) {
       R[k][l] = k % 4 == 0 ? 1.0 : 0.0; // the lanes not taken keep the identity
       X[k][l] = F[k][l];
+      Xit[k][l] = FinvT[k][l];
     }
-  inverseTranspose(X, Xit, det); // det F: the one-element step's first check
   for (int l = 0; l < W; ++l) {
-    active[l] = ok[l] & (det[l] > 0);
+    det[l] = detF[l];
+    active[l] = ok[l] & (det[l] > 0); // det F: the one-element step's first check
     ok[l] = active[l];
   }
   for (int it = 0; it < 40 && anyLane(active); ++it) {
@@ -162,9 +165,7 @@ LAMINA_CLONE_INLINE void inPlaneIncrement(const Mat3& Fn, const Mat3& F, double 
         L[r + 3 * c][l] = (F[r][l] - Fn[r][l]) * FmInvT[c][l] +
                           (F[r + 3][l] - Fn[r + 3][l]) * FmInvT[c + 3][l] +
                           (F[r + 6][l] - Fn[r + 6][l]) * FmInvT[c + 6][l];
-  for (int l = 0; l < W; ++l)
-    ok[l] = ok[l] & (det[l] > 0);
-  polarRotations(Fm, R, ok);
+  polarRotations(Fm, FmInvT, det, R, ok); // clears ok where det Fm <= 0
   // deps = R^T D R, D = (L + L^T)/2, on the first two columns of R:
   // deps(i, j) = R_i . D R_j, the engineering shear deps(0, 1) + deps(1, 0)
   Mat3 D;
@@ -236,7 +237,6 @@ LAMINA_CLONE_INLINE bool writeHistory(const LawLaneStep& io, const materials::Gv
                                       double dt, int l) {
   using P = LawPoint;
   const double* bn = io.block_n[l];
-  double* b = io.block[l];
   const double lambda3 = g.lambda3[l];
   if (!(std::isfinite(lambda3) && lambda3 > 0))
     return false;
@@ -260,29 +260,26 @@ LAMINA_CLONE_INLINE bool writeHistory(const LawLaneStep& io, const materials::Gv
   work *= 0.5;
   psi *= 0.5 * J;
   elasticStrain(G, K, ds, e);
-  double d[6]; // the inelastic part of the increment: equivalentDeviatoric
+  materials::Vector6 d; // the inelastic part of the increment
   for (int i = 0; i < 6; ++i)
     d[i] = deps[i] - e[i];
-  const double m = (d[0] + d[1] + d[2]) / 3;
-  double e2 = 0;
-  for (int i = 0; i < 3; ++i)
-    e2 += (d[i] - m) * (d[i] - m) + 0.5 * d[3 + i] * d[3 + i];
-  const double inelastic = std::sqrt(2.0 / 3.0 * e2);
+  double F[6];
   for (int k = 0; k < 6; ++k)
-    b[P::kF + k] = io.F[k][l];
-  for (int i = 0; i < 6; ++i)
-    b[P::kEps + i] = eps[i];
-  b[P::kLambda3] = lambda3;
-  b[P::kWrinkle] = b[P::kWrinkle + 1] = b[P::kWrinkle + 2] = 0;
-  b[P::kSigma] = sig[0];
-  b[P::kSigma + 1] = sig[1];
-  b[P::kSigma + 2] = sig[3];
-  b[P::kJ] = J;
-  b[P::kPsi] = psi;
-  b[P::kDissipation] = bn[P::kDissipation] + (work - (psi - bn[P::kPsi]));
-  b[P::kInelastic] = bn[P::kInelastic] + inelastic;
-  b[P::kInelasticRate] = dt > 0 ? inelastic / dt : 0.0;
-  b[P::kWrinkleState] = 0; // taut
+    F[k] = io.F[k][l];
+  const double no_wrinkles[3] = {}; // taut
+  LawPointEnd end;
+  end.F = F;
+  end.eps = eps;
+  end.lambda3 = lambda3;
+  end.eps_w = no_wrinkles;
+  end.sigma[0] = sig[0];
+  end.sigma[1] = sig[1];
+  end.sigma[2] = sig[3];
+  end.J = J;
+  end.psi = psi;
+  end.dissipated = work - (psi - bn[P::kPsi]);
+  end.inelastic = equivalentDeviatoric(d);
+  storeLawPoint(end, dt, bn, io.block[l]);
   return true;
 }
 

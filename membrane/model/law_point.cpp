@@ -110,8 +110,8 @@ WrinkledStep solve(const materials::ConstitutiveLaw& law, materials::PlaneStress
   return w;
 }
 
-/// The equivalent (von Mises) value sqrt(2/3 e:e) of the deviator of the
-/// engineering strain @p d.
+} // namespace
+
 double equivalentDeviatoric(const Vector6& d) {
   const double m = (d[0] + d[1] + d[2]) / 3;
   double e2 = 0;
@@ -120,7 +120,20 @@ double equivalentDeviatoric(const Vector6& d) {
   return std::sqrt(2.0 / 3.0 * e2);
 }
 
-} // namespace
+void storeLawPoint(const LawPointEnd& end, double dt, const double* block_n, double* block) {
+  using P = LawPoint;
+  std::copy(end.F, end.F + 6, block + P::kF);
+  std::copy(end.eps, end.eps + 6, block + P::kEps);
+  block[P::kLambda3] = end.lambda3;
+  std::copy(end.eps_w, end.eps_w + 3, block + P::kWrinkle);
+  std::copy(end.sigma, end.sigma + 3, block + P::kSigma);
+  block[P::kJ] = end.J;
+  block[P::kPsi] = end.psi;
+  block[P::kDissipation] = block_n[P::kDissipation] + end.dissipated;
+  block[P::kInelastic] = block_n[P::kInelastic] + end.inelastic;
+  block[P::kInelasticRate] = dt > 0 ? end.inelastic / dt : 0.0;
+  block[P::kWrinkleState] = end.state;
+}
 
 void initLawPoint(const materials::ConstitutiveLaw& law, const Matrix32& F0, double* block) {
   std::fill(block, block + LawPoint::size(law), 0.0);
@@ -162,20 +175,19 @@ Eigen::Vector3d stepLawPoint(const materials::ConstitutiveLaw& law, const Matrix
   const bool elastic = law.isHyperelastic();
   const double inelastic =
       elastic ? 0.0 : equivalentDeviatoric(deps - law.elasticStrain(w.r.sigma - sigma_n, J));
-  // The new history.
-  Eigen::Map<Matrix32>(block + P::kF) = F;
-  Eigen::Map<Vector6>(block + P::kEps) = w.r.eps;
-  block[P::kLambda3] = w.r.lambda3;
-  Eigen::Map<Eigen::Vector3d>(block + P::kWrinkle) = w.eps_w;
+  LawPointEnd end;
+  end.F = F.data();
+  end.eps = w.r.eps.data();
+  end.lambda3 = w.r.lambda3;
+  end.eps_w = w.eps_w.data();
   for (int i = 0; i < 3; ++i)
-    block[P::kSigma + i] = w.r.sigma[kPlane[i]];
-  block[P::kJ] = J;
-  block[P::kPsi] = psi;
-  block[P::kDissipation] =
-      block_n[P::kDissipation] + (elastic ? 0.0 : work - (psi - block_n[P::kPsi]));
-  block[P::kInelastic] = block_n[P::kInelastic] + inelastic;
-  block[P::kInelasticRate] = dt > 0 ? inelastic / dt : 0.0;
-  block[P::kWrinkleState] = static_cast<double>(static_cast<int>(w.state));
+    end.sigma[i] = w.r.sigma[kPlane[i]];
+  end.J = J;
+  end.psi = psi;
+  end.dissipated = elastic ? 0.0 : work - (psi - block_n[P::kPsi]);
+  end.inelastic = inelastic;
+  end.state = static_cast<double>(static_cast<int>(w.state));
+  storeLawPoint(end, dt, block_n, block);
   return lawPointPk2(F, block);
 }
 

@@ -86,6 +86,29 @@ Eigen::Vector3d stepLawPoint(const materials::ConstitutiveLaw& law,
                              const Eigen::Matrix<double, 3, 2>& F, bool tension_only, double dt,
                              const double* block_n, double* block);
 
+/// What one step of an element ends in: everything storeLawPoint writes.
+struct LawPointEnd {
+  const double* F = nullptr;     ///< F at t_{n+1}, 3 x 2 column-major (6)
+  const double* eps = nullptr;   ///< the law's strain at t_{n+1} (6, lamina order)
+  double lambda3 = 1;            ///< thickness stretch
+  const double* eps_w = nullptr; ///< wrinkling strain [xx, yy, xy] (3)
+  double sigma[3] = {};          ///< in-plane Cauchy stress [xx, yy, xy], law frame (Pa)
+  double J = 1;                  ///< volume ratio
+  double psi = 0;                ///< stored energy per reference volume (J/m^3)
+  double dissipated = 0;         ///< the step's dissipation per reference volume (J/m^3)
+  double inelastic = 0;          ///< the step's equivalent inelastic strain
+  double state = 0;              ///< 0 taut, 1 wrinkled, 2 slack (as Wrinkle)
+};
+
+/// Writes the history at t_{n+1} of a step over @p dt that ended in @p end
+/// into @p block, accumulating the dissipation and inelastic strain of
+/// @p block_n (stepLawPoint's last part; law_lanes.cpp's too).
+void storeLawPoint(const LawPointEnd& end, double dt, const double* block_n, double* block);
+
+/// @return the equivalent (von Mises) value sqrt(2/3 e:e) of the deviator
+/// e of the engineering strain @p d
+double equivalentDeviatoric(const materials::Vector6& d);
+
 /// @return S = J U2^-1 sigma_hat U2^-1 [S11, S22, S12] of the history @p block at
 /// deformation gradient @p F (the one the block was stepped to)
 Eigen::Vector3d lawPointPk2(const Eigen::Matrix<double, 3, 2>& F, const double* block);
