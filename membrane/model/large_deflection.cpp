@@ -48,20 +48,6 @@ LargeDeflection::LargeDeflection(const Body& body) : body_(body) {
   elements_.reserve(ne);
   for (int e = 0; e < ne; ++e)
     elements_.push_back(makeFabricElement(mesh, e, body.sections[mesh.region_of[e]].axis));
-  // Node -> element corners, so the gather of element forces needs no atomics:
-  // each corner's force goes to its slot in its node's list (elements in order).
-  node_start_.assign(n + 1, 0);
-  for (const auto& t : mesh.triangles)
-    for (int i : t)
-      ++node_start_[i + 1];
-  for (int i = 0; i < n; ++i)
-    node_start_[i + 1] += node_start_[i];
-  corner_slot_.resize(3 * static_cast<size_t>(ne));
-  std::vector<int> fill(node_start_.begin(), node_start_.end() - 1);
-  for (int e = 0; e < ne; ++e)
-    for (int a = 0; a < 3; ++a)
-      corner_slot_[3 * static_cast<size_t>(e) + a] = fill[mesh.triangles[e][a]]++;
-  fe_.assign(9 * static_cast<size_t>(ne), 0.0);
   packed_.resize(ne);
   for (int e = 0; e < ne; ++e) {
     const FabricElement& el = elements_[e];
@@ -107,6 +93,7 @@ LargeDeflection::LargeDeflection(const Body& body) : body_(body) {
     l = std::min(l, length_[e]);
   }
   initHistory();
+  initLanes();
   setup_s_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -146,25 +133,48 @@ void LargeDeflection::initHistory() {
       initLawPoint(*body_.sections[mesh.region_of[e]].law, elements_[e].frame.leftCols<2>(),
                    history_.data() + history_offset_[e]);
   trial_ = history_;
-  // groups of kLawLanes elements that step together: one GVBO section
-  const int ng = (ne + kLawLanes - 1) / kLawLanes;
-  std::vector<int> lanes(static_cast<size_t>(ng), -1);
-  bool any = false;
-  for (int c = 0; c < ng; ++c) {
-    const int e0 = c * kLawLanes, e1 = std::min(ne, e0 + kLawLanes), r = mesh.region_of[e0];
-    bool same = dynamic_cast<const materials::GvboLaw*>(body_.sections[r].law.get()) != nullptr;
-    for (int e = e0; e < e1 && same; ++e)
-      same = history_offset_[e] >= 0 && mesh.region_of[e] == r;
-    if (same) {
-      lanes[static_cast<size_t>(c)] = r;
-      any = true;
-    }
-  }
-  if (any)
-    lane_region_ = std::move(lanes);
 }
 
-void LargeDeflection::lawLaneForces(int e0, int n, int r, const double* u, double (*out)[9]) const {
+void LargeDeflection::initLanes() {
+  static_assert(kFabricLanes == kLawLanes, "one group size for every kind of lanes");
+  const Mesh& mesh = body_.mesh;
+  const int ne = mesh.numElements(), ng = (ne + kLawLanes - 1) / kLawLanes;
+  lane_groups_.assign(static_cast<size_t>(ng), LaneGroup{});
+  lane_elements_.resize(static_cast<size_t>(ng));
+  for (int g = 0; g < ng; ++g) {
+    const int e0 = g * kLawLanes, e1 = std::min(ne, e0 + kLawLanes), r = mesh.region_of[e0];
+    bool same = true;
+    for (int e = e0; e < e1; ++e)
+      same = same && mesh.region_of[e] == r;
+    LaneGroup& group = lane_groups_[static_cast<size_t>(g)];
+    if (same && packed_[e0].region >= 0 && e1 - e0 == kLawLanes)
+      group = {LaneKind::Linear, r};
+    else if (same && hasHistory() && history_offset_[e0] >= 0 &&
+             dynamic_cast<const materials::GvboLaw*>(body_.sections[r].law.get()) != nullptr)
+      group = {LaneKind::Gvbo, r};
+    FabricLaneGroup& lanes = lane_elements_[static_cast<size_t>(g)];
+    for (int k = 0; k < kLawLanes; ++k) {
+      const Packed& p = packed_[std::min(e0 + k, e1 - 1)]; // unused lanes repeat the last element
+      for (int a = 0; a < 3; ++a)
+        lanes.node[a][k] = 3 * p.node[a];
+      for (int j = 0; j < 6; ++j)
+        lanes.dN[j][k] = p.dN[j];
+      lanes.hA[k] = p.hA;
+    }
+  }
+  lane_laws_.resize(body_.sections.size());
+  for (size_t r = 0; r < body_.sections.size(); ++r) {
+    LinearLaneLaw& law = lane_laws_[r];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j)
+        law.C[i][j] = cps_[r](i, j);
+      law.s0[i] = s0_[r][i];
+    }
+    law.relaxed = relaxed_[r] != 0;
+  }
+}
+
+void LargeDeflection::lawLaneForces(int e0, int n, int r, const double* x, double (*out)[9]) const {
   const Section& s = body_.sections[r];
   const auto& law = static_cast<const materials::GvboLaw&>(*s.law);
   LawLaneStep io;
@@ -173,7 +183,7 @@ void LargeDeflection::lawLaneForces(int e0, int n, int r, const double* u, doubl
     const int e = e0 + std::min(k, n - 1); // unused lanes repeat the last element
     const Packed& p = packed_[e];
     double F0[3], F1[3];
-    deformation(p, u, F0, F1);
+    deformation(p, x, F0, F1);
     for (int c = 0; c < 3; ++c) {
       io.F[c][k] = F0[c];
       io.F[3 + c][k] = F1[c];
@@ -285,16 +295,26 @@ void LargeDeflection::restoreHistory(const History& h) {
   trial_ = history_;
 }
 
-void LargeDeflection::deformation(const Packed& p, const double* u, double (&F0)[3],
+const double* LargeDeflection::positions(const Eigen::VectorXd& u) const {
+  const int n = static_cast<int>(u.size());
+  x_.resize(u.size());
+  double* x = x_.data();
+  const double *x0 = x0_.data(), *up = u.data();
+#pragma omp parallel for schedule(static) if (n > 3 * kParallelElements)
+  for (int i = 0; i < n; ++i)
+    x[i] = x0[i] + up[i];
+  return x;
+}
+
+void LargeDeflection::deformation(const Packed& p, const double* x, double (&F0)[3],
                                   double (&F1)[3]) const {
   for (int c = 0; c < 3; ++c)
     F0[c] = F1[c] = 0;
   for (int a = 0; a < 3; ++a) {
     const size_t k = 3 * static_cast<size_t>(p.node[a]);
     for (int c = 0; c < 3; ++c) {
-      const double x = x0_[k + c] + u[k + c];
-      F0[c] += x * p.dN[2 * a];
-      F1[c] += x * p.dN[2 * a + 1];
+      F0[c] += x[k + c] * p.dN[2 * a];
+      F1[c] += x[k + c] * p.dN[2 * a + 1];
     }
   }
 }
@@ -308,87 +328,167 @@ Eigen::Vector3d LargeDeflection::linearStress(int r, const double (&F0)[3], cons
   C[1] = F1[0] * F1[0] + F1[1] * F1[1] + F1[2] * F1[2];
   C[2] = F0[0] * F1[0] + F0[1] * F1[1] + F0[2] * F1[2];
   const Eigen::Vector3d E(0.5 * (C[0] - 1), 0.5 * (C[1] - 1), C[2]);
-  Eigen::Vector3d S = cps_[r] * E + s0_[r];
+  // S = C_ps E + S0 summed as Eigen sums its fixed-size product (rows 0 and
+  // 1 left to right, row 2 pairing its last two terms), which this function
+  // used before the lanes (fabric_lanes.cpp) repeated it: results unchanged
+  const Eigen::Matrix3d& K = cps_[r];
+  const Eigen::Vector3d& S0 = s0_[r];
+  Eigen::Vector3d S(K(0, 0) * E[0] + K(0, 1) * E[1] + K(0, 2) * E[2] + S0[0],
+                    K(1, 0) * E[0] + K(1, 1) * E[1] + K(1, 2) * E[2] + S0[1],
+                    (K(2, 0) * E[0] + (K(2, 1) * E[1] + K(2, 2) * E[2])) + S0[2]);
   if (relaxed_[static_cast<size_t>(r)] && !positiveSemidefinite2(S[0], S[1], S[2]))
     S = relaxedStress(S, E + cps_inv_[r] * s0_[r], cps_[r]).S;
   return S;
 }
 
+void LargeDeflection::elementForce(int e, const double* x, const Eigen::VectorXd& u, double* out,
+                                   core::ParallelErrors& errors) const {
+  // fabric_element.hpp written out for the elastic element, from the packed
+  // data: F = sum x_a dN_a^T, E = (F^T F - I)/2, S = C_ps E + S0,
+  // f_a = h A0 F S dN_a; with the relaxed wrinkling law, S is relaxed when it
+  // is not taut (relaxed_wrinkling.hpp). Projection and nonlinear-law regions
+  // take the general path.
+  const Packed& p = packed_[e];
+  const bool law_element = p.region < 0 && hasHistory() && history_offset_[e] >= 0;
+  if (p.region < 0 && !law_element) {
+    const FabricStress st = stress(e, u);
+    Eigen::Map<Eigen::Matrix3d>{out} =
+        fabricForces(elements_[e], st, body_.sections[-1 - p.region].thickness);
+    return;
+  }
+  double F0[3], F1[3]; // columns of F
+  deformation(p, x, F0, F1);
+  if (law_element) {
+    Eigen::Matrix<double, 3, 2> F;
+    F << F0[0], F1[0], F0[1], F1[1], F0[2], F1[2];
+    errors.run([&] { lawElementForce(e, F, out); });
+    return;
+  }
+  double C[3];
+  const Eigen::Vector3d S = linearStress(p.region, F0, F1, C);
+  double P0[3], P1[3]; // h A0 F S, columns
+  for (int c = 0; c < 3; ++c) {
+    P0[c] = p.hA * (F0[c] * S[0] + F1[c] * S[2]);
+    P1[c] = p.hA * (F0[c] * S[2] + F1[c] * S[1]);
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c)
+      out[3 * a + c] = P0[c] * p.dN[2 * a] + P1[c] * p.dN[2 * a + 1];
+}
+
+void LargeDeflection::groupForces(int g, const double* x, const Eigen::VectorXd& u, double* f,
+                                  core::ParallelErrors& errors) const {
+  const int ne = body_.mesh.numElements(), e0 = g * kLawLanes, n = std::min(kLawLanes, ne - e0);
+  const int* corner = plan_.corner.data();
+  double* deferred = deferred_f_.data();
+  auto add = [&](int e, const double* out) { // each corner's force to its node or its place
+    for (int a = 0; a < 3; ++a) {
+      const int code = corner[3 * static_cast<size_t>(e) + a];
+      if (code >= 0)
+        for (int c = 0; c < 3; ++c)
+          f[3 * static_cast<size_t>(code) + c] += out[3 * a + c];
+      else
+        for (int c = 0; c < 3; ++c)
+          deferred[3 * static_cast<size_t>(-1 - code) + c] = out[3 * a + c];
+    }
+  };
+  const LaneGroup group = lane_groups_[static_cast<size_t>(g)];
+  if (group.kind == LaneKind::Linear) { // a full group
+    double lanes[9][kFabricLanes];
+    const std::uint32_t taken =
+        linearFabricForces(lane_laws_[static_cast<size_t>(group.region)],
+                           lane_elements_[static_cast<size_t>(g)], x, lanes);
+    for (int k = 0; k < kFabricLanes; ++k) {
+      double out[9];
+      for (int j = 0; j < 9; ++j)
+        out[j] = lanes[j][k];
+      if (!(taken >> k & 1u))
+        elementForce(e0 + k, x, u, out, errors);
+      add(e0 + k, out);
+    }
+    return;
+  }
+  double out[kLawLanes][9] = {}; // stays zero when a law's failure is recorded in errors
+  if (group.kind == LaneKind::Gvbo)
+    errors.run([&] { lawLaneForces(e0, n, group.region, x, out); });
+  else
+    for (int k = 0; k < n; ++k)
+      elementForce(e0 + k, x, u, out[k], errors);
+  for (int k = 0; k < n; ++k)
+    add(e0 + k, out[k]);
+}
+
+void LargeDeflection::planCorners(int threads) const {
+  const Mesh& mesh = body_.mesh;
+  const int ne = mesh.numElements(), n = mesh.numNodes();
+  const int ng = static_cast<int>(lane_groups_.size());
+  plan_.threads = 0;
+  plan_.corner.assign(3 * static_cast<size_t>(ne), 0);
+  std::vector<int> first(static_cast<size_t>(n), -1); // the thread of each node's first element
+  std::vector<std::pair<int, int>> later;             // (node, corner) of the other threads
+  for (int t = 0; t < threads; ++t) {
+    const int e0 = std::min(ne, kLawLanes * (ng * t / threads));
+    const int e1 = std::min(ne, kLawLanes * (ng * (t + 1) / threads));
+    for (int e = e0; e < e1; ++e)
+      for (int a = 0; a < 3; ++a) {
+        const int i = mesh.triangles[e][a];
+        if (first[i] < 0)
+          first[i] = t;
+        plan_.corner[3 * static_cast<size_t>(e) + a] = i;
+        if (first[i] != t)
+          later.emplace_back(i, 3 * e + a);
+      }
+  }
+  // deferred places node by node, each node's corners in element order
+  std::stable_sort(later.begin(), later.end(),
+                   [](const auto& p, const auto& q) { return p.first < q.first; });
+  plan_.deferred_node.clear();
+  plan_.deferred_start.assign(1, 0);
+  for (size_t k = 0; k < later.size(); ++k) {
+    if (k == 0 || later[k].first != later[k - 1].first) {
+      if (k > 0)
+        plan_.deferred_start.push_back(static_cast<int>(k));
+      plan_.deferred_node.push_back(later[k].first);
+    }
+    plan_.corner[static_cast<size_t>(later[k].second)] = -1 - static_cast<int>(k);
+  }
+  if (!later.empty())
+    plan_.deferred_start.push_back(static_cast<int>(later.size()));
+  deferred_f_.assign(3 * later.size(), 0.0);
+  plan_.threads = threads;
+}
+
 void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
-  const int ne = body_.mesh.numElements(), n = body_.mesh.numNodes();
-  double* fe = fe_.data();
+  const int ne = body_.mesh.numElements(), n3 = 3 * body_.mesh.numNodes();
   core::ParallelErrors errors; // a nonlinear law's failure, naming the element
-  f.resize(3 * n);
+  f.resize(n3);
+  x_.resize(static_cast<size_t>(n3));
+  double *x = x_.data(), *fp = f.data();
+  const double *x0 = x0_.data(), *up = u.data();
   // Threads only pay off on large meshes (on small ones their start-up dominates).
 #pragma omp parallel if (ne > kParallelElements)
   {
-    // fabric_element.hpp written out for the elastic element, from the
-    // packed data: F = sum x_a dN_a^T, E = (F^T F - I)/2, S = C_ps E + S0,
-    // f_a = h A0 F S dN_a; with the relaxed wrinkling law, S is relaxed when
-    // it is not taut (relaxed_wrinkling.hpp). Projection and nonlinear-law
-    // regions take the general path.
-    const double* up = u.data();
-    auto force = [&](int e, double* out) {
-      const Packed& p = packed_[e];
-      const bool law_element = p.region < 0 && hasHistory() && history_offset_[e] >= 0;
-      if (p.region < 0 && !law_element) {
-        const FabricStress st = stress(e, u);
-        const Eigen::Matrix3d fa =
-            fabricForces(elements_[e], st, body_.sections[-1 - p.region].thickness);
-        Eigen::Map<Eigen::Matrix3d>{out} = fa;
-        return;
-      }
-      double F0[3], F1[3]; // columns of F
-      deformation(p, up, F0, F1);
-      if (law_element) {
-        Eigen::Matrix<double, 3, 2> F;
-        F << F0[0], F1[0], F0[1], F1[1], F0[2], F1[2];
-        errors.run([&] { lawElementForce(e, F, out); });
-        return;
-      }
-      double C[3];
-      const Eigen::Vector3d S = linearStress(p.region, F0, F1, C);
-      double P0[3], P1[3]; // h A0 F S, columns
-      for (int c = 0; c < 3; ++c) {
-        P0[c] = p.hA * (F0[c] * S[0] + F1[c] * S[2]);
-        P1[c] = p.hA * (F0[c] * S[2] + F1[c] * S[1]);
-      }
-      for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c)
-          out[3 * a + c] = P0[c] * p.dN[2 * a] + P1[c] * p.dN[2 * a + 1];
-    };
-    const int* slot = corner_slot_.data();
-    auto store = [&](int e, const double* out) { // the corner forces into their slots
-      for (int a = 0; a < 3; ++a)                // in the gather's order, which streams its reads
-        for (int c = 0; c < 3; ++c)
-          fe[3 * static_cast<size_t>(slot[3 * static_cast<size_t>(e) + a]) + c] = out[3 * a + c];
-    };
-    if (lane_region_.empty()) {
+#pragma omp single nowait
+    if (plan_.threads != omp_get_num_threads())
+      errors.run([&] { planCorners(omp_get_num_threads()); });
 #pragma omp for schedule(static)
-      for (int e = 0; e < ne; ++e) {
-        double out[9] = {}; // stays zero when a law's failure is recorded in errors
-        force(e, out), store(e, out);
-      }
-    } else { // groups of kLawLanes elements, GVBO groups stepped together
-#pragma omp for schedule(static)
-      for (int g = 0; g < static_cast<int>(lane_region_.size()); ++g) {
-        const int e0 = g * kLawLanes, n = std::min(kLawLanes, ne - e0);
-        double out[kLawLanes][9] = {};
-        if (lane_region_[static_cast<size_t>(g)] >= 0)
-          errors.run([&] { lawLaneForces(e0, n, lane_region_[static_cast<size_t>(g)], up, out); });
-        else
-          for (int k = 0; k < n; ++k)
-            force(e0 + k, out[k]);
-        for (int k = 0; k < n; ++k)
-          store(e0 + k, out[k]);
-      }
+    for (int i = 0; i < n3; ++i) {
+      x[i] = x0[i] + up[i];
+      fp[i] = 0;
     }
+    // Each thread its share of the groups, in element order (planCorners).
+    const auto [g0, g1] = core::threadRange(static_cast<int>(lane_groups_.size()));
+    if (!errors.failed())
+      for (int g = g0; g < g1; ++g)
+        groupForces(g, x, u, fp, errors);
+#pragma omp barrier
+    const int nd = static_cast<int>(plan_.deferred_node.size());
 #pragma omp for schedule(static)
-    for (int i = 0; i < n; ++i) {
-      Eigen::Vector3d s = Eigen::Vector3d::Zero();
-      for (int k = node_start_[i]; k < node_start_[i + 1]; ++k)
-        s += Eigen::Map<const Eigen::Vector3d>(fe + 3 * static_cast<size_t>(k));
-      f.segment<3>(3 * i) = s;
+    for (int k = 0; k < nd; ++k) { // the later threads' corners, in element order
+      double* fi = fp + 3 * static_cast<size_t>(plan_.deferred_node[k]);
+      for (int d = plan_.deferred_start[k]; d < plan_.deferred_start[k + 1]; ++d)
+        for (int c = 0; c < 3; ++c)
+          fi[c] += deferred_f_[3 * static_cast<size_t>(d) + c];
     }
   }
   errors.rethrow();
@@ -464,30 +564,47 @@ double LargeDeflection::currentStableStep(const Eigen::VectorXd& u) const {
   return dt;
 }
 
-double LargeDeflection::linearStableStep(const Eigen::VectorXd& u) const {
+double LargeDeflection::elementStableStep(int e, const double* x, const Eigen::VectorXd& u) const {
   // P = F S with S = C_ps E + S0 has dP/dF = S + F C_ps F^T: per reference
   // length and mass the fastest wave's modulus is M(C_ps) lambda_max^2 plus
   // the largest principal S (the string's wave of a tension).
-  const int ne = body_.mesh.numElements();
+  const int r = body_.mesh.region_of[e];
+  const Section& s = body_.sections[r];
+  double F0[3], F1[3]; // columns of F
+  deformation(packed_[e], x, F0, F1);
+  double C[3]; // C = F^T F: C11, C22, C12
+  Eigen::Vector3d S = linearStress(r, F0, F1, C);
+  if (s.tension_only && !relaxed_[static_cast<size_t>(r)] &&
+      !positiveSemidefinite2(S[0], S[1], S[2]))
+    S = stress(e, u).S; // the projection law's tension-only stress
+  const double stretch = std::max(majorValue(C[0], C[1], C[2]), 1.0);
+  const double tension = std::max(majorValue(S[0], S[1], S[2]), 0.0);
+  const double now = std::sqrt((stretch * wave_modulus_[r] + tension) / s.density);
+  const double rest = rest_speed_[r];
+  return length_[e] / (now > rest * (1 + 1e-12) ? now : rest);
+}
+
+double LargeDeflection::linearStableStep(const Eigen::VectorXd& u) const {
+  const int ne = body_.mesh.numElements(), ng = static_cast<int>(lane_groups_.size());
   double dt = std::numeric_limits<double>::infinity();
+  const double* x = positions(u);
 #pragma omp parallel for schedule(static) reduction(min : dt) if (ne > kParallelElements)
-  for (int e = 0; e < ne; ++e) {
-    const int r = body_.mesh.region_of[e];
-    const Section& s = body_.sections[r];
-    if (!s.isLinear())
-      continue;
-    double F0[3], F1[3]; // columns of F
-    deformation(packed_[e], u.data(), F0, F1);
-    double C[3]; // C = F^T F: C11, C22, C12
-    Eigen::Vector3d S = linearStress(r, F0, F1, C);
-    if (s.tension_only && !relaxed_[static_cast<size_t>(r)] &&
-        !positiveSemidefinite2(S[0], S[1], S[2]))
-      S = stress(e, u).S; // the projection law's tension-only stress
-    const double stretch = std::max(majorValue(C[0], C[1], C[2]), 1.0);
-    const double tension = std::max(majorValue(S[0], S[1], S[2]), 0.0);
-    const double now = std::sqrt((stretch * wave_modulus_[r] + tension) / s.density);
-    const double rest = rest_speed_[r];
-    dt = std::min(dt, length_[e] / (now > rest * (1 + 1e-12) ? now : rest));
+  for (int g = 0; g < ng; ++g) {
+    const int e0 = g * kFabricLanes, n = std::min(kFabricLanes, ne - e0);
+    const LaneGroup group = lane_groups_[static_cast<size_t>(g)];
+    std::uint32_t taken = 0;
+    double lanes[kFabricLanes];
+    if (group.kind == LaneKind::Linear) {
+      const auto r = static_cast<size_t>(group.region);
+      const LaneWave wave{wave_modulus_[r], body_.sections[r].density, rest_speed_[r]};
+      taken = linearFabricStableSteps(lane_laws_[r], wave, lane_elements_[static_cast<size_t>(g)],
+                                      x, length_.data() + e0, lanes);
+    }
+    for (int k = 0; k < n; ++k)
+      if (taken >> k & 1u)
+        dt = std::min(dt, lanes[k]);
+      else if (body_.sections[body_.mesh.region_of[e0 + k]].isLinear())
+        dt = std::min(dt, elementStableStep(e0 + k, x, u));
   }
   return dt;
 }

@@ -19,8 +19,10 @@
 /// owned here: committed and trial copies, the trial one written by
 /// internalForce() and accepted by commitStep() (structure.hpp).
 
+#include "core/parallel.hpp"
 #include "membrane/model/body.hpp"
 #include "membrane/model/fabric_element.hpp"
+#include "membrane/model/fabric_lanes.hpp"
 #include "membrane/model/structure.hpp"
 
 #include <vector>
@@ -100,9 +102,6 @@ private:
   std::vector<Eigen::Matrix3d> cps_;     // per region
   std::vector<Eigen::Matrix3d> cps_inv_; // C_ps^-1 per region (1/Pa)
   std::vector<Eigen::Vector3d> s0_;      // pre-stress per region (Pa)
-  std::vector<int> node_start_;          // node -> its corners' slots [start, next start)
-  std::vector<int> corner_slot_;         // 3 * element + corner -> slot (elements in order)
-  mutable std::vector<double> fe_;       // corner forces, 3 per slot (scratch)
   /// What the internal-force loop reads per element, packed in one line of
   /// memory (72 bytes instead of the 160 of FabricElement plus the section).
   struct Packed {
@@ -112,10 +111,13 @@ private:
     double hA = 0; ///< thickness x reference area (m^3)
   };
   std::vector<Packed> packed_;
-  /// The columns @p F0, @p F1 of F = sum_a (X_a + u_a) dN_a^T of the packed
-  /// element @p p at displacements @p u (3 per node).
-  void deformation(const Packed& p, const double* u, double (&F0)[3], double (&F1)[3]) const;
-  std::vector<double> x0_; // reference positions, 3 per node (m)
+  /// The columns @p F0, @p F1 of F = sum_a x_a dN_a^T of the packed
+  /// element @p p at the positions @p x (3 per node, positions()).
+  void deformation(const Packed& p, const double* x, double (&F0)[3], double (&F1)[3]) const;
+  /// @return the positions x = X + u at displacements @p u (3 per node), in x_
+  const double* positions(const Eigen::VectorXd& u) const;
+  mutable std::vector<double> x_; // positions of the last positions()
+  std::vector<double> x0_;        // reference positions, 3 per node (m)
   SparseMatrix M_;
   bool any_projection_ = false, any_threshold_ = false;
   std::vector<char> relaxed_; // per region: a linear law with the relaxed wrinkling law
@@ -129,16 +131,53 @@ private:
   std::vector<double> rest_speed_;    // per region: restSpeed() (m/s)
   std::vector<double> length_;        // per element: its length 2 A / longest edge (m)
   std::vector<double> min_length_;    // per region: its elements' least length (m)
-  /// Per group of kLawLanes consecutive elements (law_lanes.hpp): their
-  /// region when all of them hold a history of one GVBO section, else -1;
-  /// empty when no group does.
-  std::vector<int> lane_region_;
+  /// How a group of kLawLanes consecutive elements is stepped.
+  enum class LaneKind : char {
+    Elements, ///< one element at a time (mixed sections, the general path, a short last group)
+    Linear,   ///< one linear section: linearFabricForces (fabric_lanes.hpp)
+    Gvbo      ///< one GVBO section: stepGvboLawPoints (law_lanes.hpp)
+  };
+  /// A group's kind and section.
+  struct LaneGroup {
+    LaneKind kind = LaneKind::Elements;
+    int region = -1;
+  };
+  std::vector<LaneGroup> lane_groups_;         // per group of kLawLanes elements
+  std::vector<FabricLaneGroup> lane_elements_; // per group: its elements in lanes (Linear ones)
+  std::vector<LinearLaneLaw> lane_laws_;       // per region: its law in lanes (linear ones)
+  /// Sorts the elements into groups of kLawLanes (after initHistory()).
+  void initLanes();
+  /// The force of element @p e at positions @p x (displacements @p u) into
+  /// @p out (9: node a's x, y, z at 3 a + c); a law's failure into @p errors.
+  void elementForce(int e, const double* x, const Eigen::VectorXd& u, double* out,
+                    core::ParallelErrors& errors) const;
+  /// Adds the forces of group @p g's elements to @p f (its nodes held by
+  /// this thread first) or to deferred_f_ (planCorners()).
+  void groupForces(int g, const double* x, const Eigen::VectorXd& u, double* f,
+                   core::ParallelErrors& errors) const;
+  /// Where each corner's force goes when a team of @p threads takes the
+  /// groups in contiguous shares (core::threadRange), in plan_.
+  void planCorners(int threads) const;
+  /// The element forces summed at the nodes without a buffer per corner:
+  /// the thread whose share holds a node's first element adds that
+  /// element's force and those of its later elements in its share directly
+  /// to f; a later thread's corner waits in deferred_f_ and is added after
+  /// the team's barrier. Each node's sum is then taken in element order
+  /// from zero, as one thread would: the same bits at any team size.
+  struct CornerPlan {
+    int threads = 0;                 ///< the team size planned for (0: none)
+    std::vector<int> corner;         ///< 3 e + a -> its node i, or -1 - its place in deferred_f_
+    std::vector<int> deferred_node;  ///< the nodes with deferred corners, ascending
+    std::vector<int> deferred_start; ///< their places [start, next start) in deferred_f_
+  };
+  mutable CornerPlan plan_;
+  mutable std::vector<double> deferred_f_; // 3 per deferred corner (N)
   /// The force of a nonlinear element at F (trial history), into @p out (9).
   void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
   /// The forces of the @p n (<= kLawLanes) elements from @p e0 of a lane
-  /// group of GVBO region @p r at displacements @p u, stepped together
+  /// group of GVBO region @p r at positions @p x, stepped together
   /// (stepGvboLawPoints; the lanes it hands back by lawElementForce).
-  void lawLaneForces(int e0, int n, int r, const double* u, double (*out)[9]) const;
+  void lawLaneForces(int e0, int n, int r, const double* x, double (*out)[9]) const;
   /// @return the fastest wave speed of region @p r at rest, its pre-tension
   /// included (m/s; from wave_modulus_, kept in rest_speed_)
   double restSpeed(size_t r) const;
@@ -155,6 +194,9 @@ private:
   /// never below its region's rest speed and equal to it until faster by
   /// more than round-off
   double linearStableStep(const Eigen::VectorXd& u) const;
+  /// The stable step of element @p e of a linear section at positions @p x
+  /// (displacements @p u): its length over its fastest wave's speed.
+  double elementStableStep(int e, const double* x, const Eigen::VectorXd& u) const;
   /// @return the principal Cauchy stresses of element @p e in state @p st (its law's with history)
   Eigen::Vector2d cauchyPrincipal(int e, const FabricStress& st) const;
   /// Builds the history blocks of the nonlinear sections.
