@@ -25,12 +25,18 @@
 
 namespace lamina::core {
 
+/// @return [begin, end) of thread @p t's static share of [0, @p n) in a
+/// team of @p nt (contiguous shares in thread order).
+inline std::pair<int, int> shareRange(int n, int t, int nt) {
+  const long ln = n, lt = t, lnt = nt;
+  return {static_cast<int>(ln * lt / lnt), static_cast<int>(ln * (lt + 1) / lnt)};
+}
+
 /// @return [begin, end) of the calling thread's static share of [0, n)
 /// (the whole range outside a parallel region). Contiguous shares keep each
 /// thread on the same part of the vectors in every loop of a solve.
 inline std::pair<int, int> threadRange(int n) {
-  const long t = omp_get_thread_num(), nt = omp_get_num_threads();
-  return {static_cast<int>(n * t / nt), static_cast<int>(n * (t + 1) / nt)};
+  return shareRange(n, omp_get_thread_num(), omp_get_num_threads());
 }
 
 /// The first exception thrown inside an OpenMP parallel region, carried out

@@ -6,10 +6,10 @@
 ///
 /// Per lane: F = sum_a x_a dN_a^T (x_a = X_a + u_a, the positions), E = (F^T F - I)/2,
 /// S = C_ps E + S0 and f_a = h A0 F S dN_a, each sum taken in the order of
-/// the one-element force (LargeDeflection's element loop), and the file is
-/// compiled without contracting a product and a sum into one fused
-/// operation, so every lane's force equals the one-element force bit for
-/// bit on any CPU (tests/membrane/fabric_lanes_test.cpp). With the relaxed
+/// the one-element force (LargeDeflection's element loop), and this file and
+/// large_deflection.cpp are compiled without contracting a product and a sum
+/// into one fused operation, so every lane's force equals the one-element
+/// force bit for bit on any CPU (tests/membrane/fabric_lanes_test.cpp). With the relaxed
 /// wrinkling law a lane whose trial stress is not positive semidefinite is
 /// handed back: the caller takes it through relaxedStress().
 

@@ -19,6 +19,9 @@ namespace {
 /// Below this many elements the loops run on one thread.
 constexpr int kParallelElements = 4000;
 
+/// Whether Linear groups take the lanes (LargeDeflection::useLanes).
+bool g_lanes = true;
+
 /// @return the larger eigenvalue of the symmetric [a c; c b]: principal2()'s
 /// major value without its hypot (which guards against overflow at extreme
 /// exponents, at several times the cost), for the stable step's two per
@@ -133,6 +136,10 @@ void LargeDeflection::initHistory() {
       initLawPoint(*body_.sections[mesh.region_of[e]].law, elements_[e].frame.leftCols<2>(),
                    history_.data() + history_offset_[e]);
   trial_ = history_;
+}
+
+void LargeDeflection::useLanes(bool lanes) {
+  g_lanes = lanes;
 }
 
 void LargeDeflection::initLanes() {
@@ -319,9 +326,8 @@ void LargeDeflection::deformation(const Packed& p, const double* x, double (&F0)
   }
 }
 
-// One function for the force and the stable step. The element loop runs
-// faster calling it than with these lines written into its body (about 20 %
-// on the fabric internal force, bench/membrane/explicit.md).
+// One function for the one-element force and stable step; the lanes
+// (fabric_lanes.cpp) repeat its sums in its order.
 Eigen::Vector3d LargeDeflection::linearStress(int r, const double (&F0)[3], const double (&F1)[3],
                                               double (&C)[3]) const {
   C[0] = F0[0] * F0[0] + F0[1] * F0[1] + F0[2] * F0[2];
@@ -393,7 +399,7 @@ void LargeDeflection::groupForces(int g, const double* x, const Eigen::VectorXd&
     }
   };
   const LaneGroup group = lane_groups_[static_cast<size_t>(g)];
-  if (group.kind == LaneKind::Linear) { // a full group
+  if (group.kind == LaneKind::Linear && g_lanes) { // a full group
     double lanes[9][kFabricLanes];
     const std::uint32_t taken =
         linearFabricForces(lane_laws_[static_cast<size_t>(group.region)],
@@ -422,19 +428,19 @@ void LargeDeflection::planCorners(int threads) const {
   const Mesh& mesh = body_.mesh;
   const int ne = mesh.numElements(), n = mesh.numNodes();
   const int ng = static_cast<int>(lane_groups_.size());
-  plan_.threads = 0;
-  plan_.corner.assign(3 * static_cast<size_t>(ne), 0);
+  plan_.threads = 0; // built in plan, swapped in at the end
+  CornerPlan plan;
+  plan.corner.assign(3 * static_cast<size_t>(ne), 0);
   std::vector<int> first(static_cast<size_t>(n), -1); // the thread of each node's first element
   std::vector<std::pair<int, int>> later;             // (node, corner) of the other threads
   for (int t = 0; t < threads; ++t) {
-    const int e0 = std::min(ne, kLawLanes * (ng * t / threads));
-    const int e1 = std::min(ne, kLawLanes * (ng * (t + 1) / threads));
-    for (int e = e0; e < e1; ++e)
+    const auto [g0, g1] = core::shareRange(ng, t, threads); // as core::threadRange in the team
+    for (int e = std::min(ne, kLawLanes * g0); e < std::min(ne, kLawLanes * g1); ++e)
       for (int a = 0; a < 3; ++a) {
         const int i = mesh.triangles[e][a];
         if (first[i] < 0)
           first[i] = t;
-        plan_.corner[3 * static_cast<size_t>(e) + a] = i;
+        plan.corner[3 * static_cast<size_t>(e) + a] = i;
         if (first[i] != t)
           later.emplace_back(i, 3 * e + a);
       }
@@ -442,20 +448,20 @@ void LargeDeflection::planCorners(int threads) const {
   // deferred places node by node, each node's corners in element order
   std::stable_sort(later.begin(), later.end(),
                    [](const auto& p, const auto& q) { return p.first < q.first; });
-  plan_.deferred_node.clear();
-  plan_.deferred_start.assign(1, 0);
+  plan.deferred_start.assign(1, 0);
   for (size_t k = 0; k < later.size(); ++k) {
     if (k == 0 || later[k].first != later[k - 1].first) {
       if (k > 0)
-        plan_.deferred_start.push_back(static_cast<int>(k));
-      plan_.deferred_node.push_back(later[k].first);
+        plan.deferred_start.push_back(static_cast<int>(k));
+      plan.deferred_node.push_back(later[k].first);
     }
-    plan_.corner[static_cast<size_t>(later[k].second)] = -1 - static_cast<int>(k);
+    plan.corner[static_cast<size_t>(later[k].second)] = -1 - static_cast<int>(k);
   }
   if (!later.empty())
-    plan_.deferred_start.push_back(static_cast<int>(later.size()));
+    plan.deferred_start.push_back(static_cast<int>(later.size()));
   deferred_f_.assign(3 * later.size(), 0.0);
-  plan_.threads = threads;
+  plan.threads = threads;
+  plan_ = std::move(plan);
 }
 
 void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f) const {
@@ -482,7 +488,7 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
       for (int g = g0; g < g1; ++g)
         groupForces(g, x, u, fp, errors);
 #pragma omp barrier
-    const int nd = static_cast<int>(plan_.deferred_node.size());
+    const int nd = errors.failed() ? 0 : static_cast<int>(plan_.deferred_node.size());
 #pragma omp for schedule(static)
     for (int k = 0; k < nd; ++k) { // the later threads' corners, in element order
       double* fi = fp + 3 * static_cast<size_t>(plan_.deferred_node[k]);
@@ -594,7 +600,7 @@ double LargeDeflection::linearStableStep(const Eigen::VectorXd& u) const {
     const LaneGroup group = lane_groups_[static_cast<size_t>(g)];
     std::uint32_t taken = 0;
     double lanes[kFabricLanes];
-    if (group.kind == LaneKind::Linear) {
+    if (group.kind == LaneKind::Linear && g_lanes) {
       const auto r = static_cast<size_t>(group.region);
       const LaneWave wave{wave_modulus_[r], body_.sections[r].density, rest_speed_[r]};
       taken = linearFabricStableSteps(lane_laws_[r], wave, lane_elements_[static_cast<size_t>(g)],

@@ -5,11 +5,13 @@
 /// region, pre-stress, tension-only wrinkling (relaxed_wrinkling.hpp, or the
 /// projection of fabric_element.hpp), failure thresholds, lumped
 /// mass (rho h A / 3 per node plus point masses). The internal force is
-/// computed element by element (no global stiffness) in one parallel region
-/// with static shares: each element writes its 3 corner forces to their
-/// slots, laid out node by node (each node's corners in element order), then
-/// each node sums its slots, a streaming read (no atomics, no serial
-/// section), so that a node's sum is the same at any thread count.
+/// computed element by element (no global stiffness), eight elements at a
+/// time where they share a section (fabric_lanes.hpp, law_lanes.hpp), in
+/// one parallel region with static shares: a thread adds each corner force
+/// to its node when its share holds the node's first element, and keeps the
+/// others for after the team's barrier (CornerPlan), so that a node's sum is
+/// taken in element order from zero, the same at any thread count (no
+/// atomics, no buffer per corner).
 ///
 /// A section with a linear law has S = C_ps E + S0 (Saint Venant-Kirchhoff,
 /// the fast path), relaxed where it is not taut when the section is
@@ -32,6 +34,10 @@ namespace lamina::membrane {
 /// Large-deflection membrane of one Body.
 class LargeDeflection final : public Structure {
 public:
+  /// Whether linear sections' elements take the lanes (fabric_lanes.hpp;
+  /// default) or the one-element loop, for every LargeDeflection of the
+  /// process: tests compare the two (not thread-safe against a running force).
+  static void useLanes(bool lanes);
   /// Builds the element frames (material axis per region), C_ps per region
   /// and the lumped mass. Keeps a reference to @p body.
   explicit LargeDeflection(const Body& body);
@@ -142,10 +148,12 @@ private:
     LaneKind kind = LaneKind::Elements;
     int region = -1;
   };
-  std::vector<LaneGroup> lane_groups_;         // per group of kLawLanes elements
-  std::vector<FabricLaneGroup> lane_elements_; // per group: its elements in lanes (Linear ones)
-  std::vector<LinearLaneLaw> lane_laws_;       // per region: its law in lanes (linear ones)
-  /// Sorts the elements into groups of kLawLanes (after initHistory()).
+  std::vector<LaneGroup> lane_groups_; // per group of kLawLanes elements
+  std::vector<FabricLaneGroup>
+      lane_elements_;                    // per group: its elements in lanes (read by Linear ones)
+  std::vector<LinearLaneLaw> lane_laws_; // per region: its law in lanes (linear ones)
+  /// Groups the elements by kLawLanes consecutive ones and gives each group
+  /// its kind (after initHistory()).
   void initLanes();
   /// The force of element @p e at positions @p x (displacements @p u) into
   /// @p out (9: node a's x, y, z at 3 a + c); a law's failure into @p errors.
