@@ -33,6 +33,24 @@ inline MaterialSources testSources() {
   return {lib.string(), std::string(LAMINA_SOURCE_DIR) + "/materials/catalog.toml"};
 }
 
+/// A 1 m square of nx x nx squares on the large-deflection model, one
+/// isotropic section (E = 10 MPa, nu = 0.3, rho h = 1 kg/m^2); @p extra is
+/// appended (more section keys, then other tables).
+inline std::string elasticSquare(int nx, const std::string& extra) {
+  return R"(
+model = "large_deflection"
+[mesh]
+Lx = 1.0
+nx = )" + std::to_string(nx) +
+         R"(
+[[section]]
+E = 10.0e6
+nu = 0.3
+density = 1000.0
+thickness = 1.0e-3
+)" + extra;
+}
+
 /// Builds a model from case text (name "test.toml" in errors).
 inline Model modelFromText(const std::string& text, const std::string& name = "test.toml") {
   const toml::table doc = core::parseTomlString(text, name);

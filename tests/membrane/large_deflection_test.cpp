@@ -34,21 +34,6 @@ double crossingFrequency(const std::vector<double>& t, const std::vector<double>
   return 0.5 * static_cast<double>(cross.size() - 1) / (cross.back() - cross.front());
 }
 
-/// A 1 m square on the large-deflection model (E = 10 MPa, rho h = 1 kg/m^2).
-std::string fabricSquare(int nx, const std::string& extra) {
-  return R"(
-model = "large_deflection"
-[mesh]
-Lx = 1.0
-nx = )" + std::to_string(nx) +
-         R"(
-[[section]]
-E = 10.0e6
-nu = 0.3
-density = 1000.0
-thickness = 1.0e-3
-)" + extra;
-}
 } // namespace
 
 // Hencky (clamped circular membrane, uniform pressure, nu = 0.3):
@@ -75,7 +60,7 @@ TEST(LargeDeflection, HenckyPressurisedMembraneMatchesTheClosedForm) {
 // Tolerance 0.6 %: the lumped-mass CST's dispersion error (k h)^2 / 24 with
 // k h = pi / 12 is 0.29 %, doubled for the diagonal direction.
 TEST(LargeDeflection, PretensionedSquareVibratesAtTheMembraneFrequency) {
-  Model m = test::modelFromText(fabricSquare(12, R"(prestress = 100.0
+  Model m = test::modelFromText(test::elasticSquare(12, R"(prestress = 100.0
 [time]
 t_end = 0.6
 [[fixed]]
@@ -152,8 +137,8 @@ mode_velocity = 1.0
 TEST(LargeDeflection, RunAtTheStableStepStaysBoundedFor10000Steps) {
   for (const bool large : {true, false}) {
     Model m = test::modelFromText(
-        large ? fabricSquare(8, "prestress = 100.0\n[time]\nsafety = 1.0\nt_end = 1.0\n"
-                                "[[fixed]]\nnodes = \"edges\"\n")
+        large ? test::elasticSquare(8, "prestress = 100.0\n[time]\nsafety = 1.0\nt_end = 1.0\n"
+                                       "[[fixed]]\nnodes = \"edges\"\n")
               : test::isotropicSquare(8) + "[time]\nintegrator = \"explicit\"\nsafety = 1.0\n"
                                            "t_end = 1.0\n[[fixed]]\nnodes = \"edges\"\n");
     m.v0 = Eigen::VectorXd::Zero(m.numDofs());
@@ -181,7 +166,7 @@ TEST(LargeDeflection, RunAtTheStableStepStaysBoundedFor10000Steps) {
 // (2 / dt_crit)^2) bounds the stable step by 2 sqrt(m / k); at that step
 // (safety 1) 10^4 steps stay bounded (the same 3 E0 bound as above).
 TEST(LargeDeflection, SpringsShortenTheStableStep) {
-  Model m = test::modelFromText(fabricSquare(8, R"([time]
+  Model m = test::modelFromText(test::elasticSquare(8, R"([time]
 safety = 1.0
 t_end = 1.0
 [[fixed]]
@@ -216,11 +201,11 @@ stiffness = 1.5625e6
 TEST(LargeDeflection, EnergyBalanceClosesAtSecondOrder) {
   double rel[2] = {0, 0};
   for (int k = 0; k < 2; ++k) {
-    Model m =
-        test::modelFromText(fabricSquare(6, "[time]\nsafety = " + std::string(k ? "0.25" : "0.5") +
-                                                "\nt_end = 0.05\n[[fixed]]\nnodes = "
-                                                "\"edges\"\n[[load]]\ntype = \"pressure\"\n"
-                                                "value = 100.0\n"));
+    Model m = test::modelFromText(
+        test::elasticSquare(6, "[time]\nsafety = " + std::string(k ? "0.25" : "0.5") +
+                                   "\nt_end = 0.05\n[[fixed]]\nnodes = "
+                                   "\"edges\"\n[[load]]\ntype = \"pressure\"\n"
+                                   "value = 100.0\n"));
     Simulation sim(m);
     test::BalanceTracker b;
     while (sim.time() < m.time.t_end) {
@@ -244,7 +229,7 @@ TEST(LargeDeflection, EnergyBalanceClosesAtSecondOrder) {
 // F and of two square roots). At rest and in compression: the rest step exactly.
 TEST(LargeDeflection, StableStepFollowsAUniformStretch) {
   const Model model =
-      test::modelFromText(fabricSquare(8, "tension_only = false\n[time]\nt_end = 1.0\n"));
+      test::modelFromText(test::elasticSquare(8, "tension_only = false\n[time]\nt_end = 1.0\n"));
   const LargeDeflection ld(model);
   ASSERT_TRUE(ld.stateDependentStep());
   const double rest = ld.stableStep();
@@ -279,7 +264,8 @@ TEST(LargeDeflection, StableStepFollowsAUniformStretch) {
 // stretched and 2.83x longer than the first, sets it (speeds 2.98x the rest
 // one): below the rest step, and 2.83x the bound per region.
 TEST(LargeDeflection, StableStepIsEachElementsOwn) {
-  Model model = test::modelFromText(fabricSquare(8, "tension_only = false\n[time]\nt_end = 1.0\n"));
+  Model model =
+      test::modelFromText(test::elasticSquare(8, "tension_only = false\n[time]\nt_end = 1.0\n"));
   for (auto& p : model.mesh.nodes)
     p.x() = p.x() * p.x(); // Lx = 1: columns at (i/8)^2
   const LargeDeflection ld(model);
@@ -369,8 +355,8 @@ mode_velocity = 20.0
 // and scales with the stable step once the sheet stiffens.
 TEST(LargeDeflection, GivenStepAboveSafetyIsKeptAtRest) {
   Model m = test::modelFromText(
-      fabricSquare(6, "prestress = 10.0\n[time]\nintegrator = \"explicit\"\nt_end = 1.0\n"
-                      "[[fixed]]\nnodes = \"edges\"\n"));
+      test::elasticSquare(6, "prestress = 10.0\n[time]\nintegrator = \"explicit\"\nt_end = 1.0\n"
+                             "[[fixed]]\nnodes = \"edges\"\n"));
   const double stable = Simulation(m).stableStep();
   m.time.dt = 0.95 * stable;
   Simulation sim(m);
@@ -461,8 +447,8 @@ TEST(LargeDeflection, InternalForceIsTheSumOfTheElementForces) {
                                    ? "tension_only = false"
                                    : "tension_only = true\nwrinkling = \"" +
                                          std::string(kWrinklingLawNames.name(law)) + "\"";
-      const Model model = test::modelFromText(
-          fabricSquare(nx, keys + "\nprestress = [20.0, -10.0, 5.0]\n[time]\nt_end = 1.0\n"));
+      const Model model = test::modelFromText(test::elasticSquare(
+          nx, keys + "\nprestress = [20.0, -10.0, 5.0]\n[time]\nt_end = 1.0\n"));
       ASSERT_EQ(model.mesh.numElements(), 2 * nx * nx);
       const LargeDeflection ld(model);
       Eigen::VectorXd u = 0.01 * Eigen::VectorXd::Random(ld.numDofs());
@@ -508,7 +494,7 @@ TEST(LargeDeflection, InternalForceIsTheSumOfTheElementForces) {
 // order: the same bits on 1, 2, 3 and 5 threads, and the element-by-element
 // sum of fabricForces() to 1e-12 of the largest force (association order).
 TEST(LargeDeflection, InternalForceHasTheSameBitsAtAnyTeamSizeOnAShuffledMesh) {
-  Model model = test::modelFromText(fabricSquare(
+  Model model = test::modelFromText(test::elasticSquare(
       50, "tension_only = true\nprestress = [20.0, -10.0, 5.0]\n[time]\nt_end = 1.0\n"));
   Mesh& mesh = model.mesh;
   std::vector<int> order(static_cast<size_t>(mesh.numElements()));
