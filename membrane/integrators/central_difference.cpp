@@ -1,5 +1,8 @@
 #include "membrane/integrators/central_difference.hpp"
 
+#include "core/parallel.hpp"
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -24,6 +27,13 @@ CentralDifference::CentralDifference(const SecondOrderSystem& system, double dt)
                  system.model().mesh.nodeLabel(i / 3), ") has no mass");
     minv_[i] = cons_.mask()[i] ? 0.0 : 1.0 / m[i];
   }
+  by_dof_.resize(cons_.size());
+  for (size_t k = 0; k < cons_.size(); ++k)
+    by_dof_[k] = static_cast<int>(k);
+  std::stable_sort(by_dof_.begin(), by_dof_.end(),
+                   [&](int p, int q) { return cons_.dofs()[p] < cons_.dofs()[q]; });
+  for (const int k : by_dof_)
+    sorted_dof_.push_back(cons_.dofs()[k]);
   for (const auto& r : system.rigidSets()) {
     double mass = 0;
     for (int d : r.dofs)
@@ -128,11 +138,16 @@ void CentralDifference::restoreHistory(const History& h) {
   step_base_ = historyInteger(h, "step", 3, 2, 0, std::numeric_limits<long>::max() / 2);
 }
 
-void CentralDifference::step(State& s) {
-  // The vector work is two threaded passes around the force evaluation:
-  // v_{n+1/2}, u_{n+1} and du, then a_{n+1} and v_{n+1}.
-  const double t1 = timeAt(s.step + 1);
-  const double th = t_base_ + (static_cast<double>(s.step - step_base_) + 0.5) * dt_;
+std::pair<int, int> CentralDifference::constrainedIn(int i0, int i1) const {
+  const auto first = std::lower_bound(sorted_dof_.begin(), sorted_dof_.end(), i0);
+  const auto last = std::lower_bound(first, sorted_dof_.end(), i1);
+  return {static_cast<int>(first - sorted_dof_.begin()),
+          static_cast<int>(last - sorted_dof_.begin())};
+}
+
+int CentralDifference::drift(const State& s, double th) {
+  // v_{n+1/2} = v_n + dt/2 a_n, u_{n+1} and du; each thread then sets the
+  // constrained DOFs of its share (their data are near in its cache).
   const int n = system_.numDofs();
   const double h = 0.5 * dt_, dt = dt_;
   vh_.resize(n);
@@ -140,59 +155,96 @@ void CentralDifference::step(State& s) {
   du_.resize(n);
   int non_finite = 0;
   const char* fixed = cons_.mask().data();
+  const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data();
+  double *vh = vh_.data(), *u1 = u1_.data(), *du = du_.data();
+#pragma omp parallel reduction(+ : non_finite) if (n > kParallelDofs)
   {
-    const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data();
-    double *vh = vh_.data(), *u1 = u1_.data(), *du = du_.data();
-#pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
-    for (int i = 0; i < n; ++i) {
+    const auto [i0, i1] = core::threadRange(n);
+    for (int i = i0; i < i1; ++i) {
       vh[i] = v[i] + h * a[i];
       u1[i] = u[i] + dt * vh[i];
       du[i] = u1[i] - u[i];
       non_finite += !fixed[i] && !std::isfinite(u1[i]);
     }
+    const auto [c0, c1] = constrainedIn(i0, i1);
+    for (int c = c0; c < c1; ++c) {
+      const int d = sorted_dof_[c];
+      vh[d] = cons_.velocity(static_cast<size_t>(by_dof_[c]), th);
+      u1[d] = u[d] + dt * vh[d];
+      du[d] = u1[d] - u[d];
+      non_finite += !std::isfinite(u1[d]);
+    }
   }
-  for (size_t k = 0; k < cons_.size(); ++k) {
-    const int d = cons_.dofs()[k];
-    vh_[d] = cons_.velocity(k, th);
-    u1_[d] = s.u[d] + dt * vh_[d];
-    du_[d] = u1_[d] - s.u[d];
-    non_finite += !std::isfinite(u1_[d]);
-  }
-  if (system_.hasContact())
-    predictMotion(system_.model().contact, s.surfaces, t1, dt, surf1_.u, svh_);
-  StateForces& next = prev_; // a_{n-1}'s forces are no longer needed
-  system_.forces(t1, u1_, vh_, surf1_.u, svh_, next);
+  return non_finite;
+}
+
+int CentralDifference::kick(const State& s, double t1, const StateForces& next) {
+  // a_{n+1} = m^-1 F, v_{n+1} = v_{n+1/2} + dt/2 a_{n+1}; without rigid sets
+  // each thread then sets the constrained DOFs of its share and their m a +
+  // f_int (the reactions' inertia), else the rigid sets first, then those.
+  const int n = system_.numDofs();
+  const double h = 0.5 * dt_;
   a1_.resize(n);
   v1_.resize(n);
+  inertia_.resize(static_cast<Eigen::Index>(cons_.size()));
+  const bool in_shares = system_.rigidSets().empty();
+  int non_finite = 0;
+  const char* fixed = cons_.mask().data();
   const ForceTotal total(next, system_.hasExternal(), system_.hasDrag());
+  const double *vh = vh_.data(), *minv = minv_.data(), *m = system_.lumpedMass().data();
+  double *a1 = a1_.data(), *v1 = v1_.data();
+#pragma omp parallel reduction(+ : non_finite) if (n > kParallelDofs)
   {
-    const double *vh = vh_.data(), *minv = minv_.data();
-    double *a1 = a1_.data(), *v1 = v1_.data();
-#pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
-    for (int i = 0; i < n; ++i) {
+    const auto [i0, i1] = core::threadRange(n);
+    for (int i = i0; i < i1; ++i) {
       a1[i] = minv[i] * total(i);
       v1[i] = vh[i] + h * a1[i];
       non_finite += !fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i]));
     }
+    const auto [c0, c1] = in_shares ? constrainedIn(i0, i1) : std::pair<int, int>(0, 0);
+    for (int c = c0; c < c1; ++c) {
+      const int d = sorted_dof_[c], k = by_dof_[c];
+      v1[d] = cons_.velocity(static_cast<size_t>(k), t1);
+      a1[d] = (v1[d] - s.v[d]) / dt_;
+      non_finite += !std::isfinite(v1[d]) || !std::isfinite(a1[d]);
+      inertia_[k] = m[d] * a1[d] + next.internal[d];
+    }
   }
-  accelerateRigid(system_.rigidSets(), rigid_mass_, total, a1_.data());
+  if (in_shares)
+    return non_finite;
+  accelerateRigid(system_.rigidSets(), rigid_mass_, total, a1);
   for (const RigidSet& r : system_.rigidSets())
     for (int d : r.dofs) {
-      v1_[d] = vh_[d] + h * a1_[d];
-      non_finite += !fixed[d] && (!std::isfinite(v1_[d]) || !std::isfinite(a1_[d]));
+      v1[d] = vh[d] + h * a1[d];
+      non_finite += !fixed[d] && (!std::isfinite(v1[d]) || !std::isfinite(a1[d]));
     }
   for (size_t k = 0; k < cons_.size(); ++k) {
     const int d = cons_.dofs()[k];
-    v1_[d] = cons_.velocity(k, t1);
-    a1_[d] = (v1_[d] - s.v[d]) / dt_;
-    non_finite += !std::isfinite(v1_[d]) || !std::isfinite(a1_[d]);
+    v1[d] = cons_.velocity(k, t1);
+    a1[d] = (v1[d] - s.v[d]) / dt_;
+    non_finite += !std::isfinite(v1[d]) || !std::isfinite(a1[d]);
+    inertia_[static_cast<Eigen::Index>(k)] = m[d] * a1[d] + next.internal[d];
   }
+  return non_finite;
+}
+
+void CentralDifference::step(State& s) {
+  // The vector work is two threaded passes around the force evaluation:
+  // v_{n+1/2}, u_{n+1} and du, then a_{n+1} and v_{n+1}.
+  const double t1 = timeAt(s.step + 1);
+  const double th = t_base_ + (static_cast<double>(s.step - step_base_) + 0.5) * dt_;
+  int non_finite = drift(s, th);
+  if (system_.hasContact())
+    predictMotion(system_.model().contact, s.surfaces, t1, dt_, surf1_.u, svh_);
+  StateForces& next = prev_; // a_{n-1}'s forces are no longer needed
+  system_.forces(t1, u1_, vh_, surf1_.u, svh_, next);
+  non_finite += kick(s, t1, next);
   if (system_.hasContact())
     non_finite += finishSurfaces(next);
   if (non_finite > 0)
     throwNonFinite(system_.model().mesh, s, t1, u1_, v1_, a1_,
                    "; the explicit step may exceed the stable step");
-  reactions(a1_, next);
+  system_.reactions(inertia_, next); // m a + f_int at the constrained DOFs (kick)
   commitStep(s, t1, u1_, v1_, a1_);
   if (system_.hasContact())
     std::swap(s.surfaces, surf1_);

@@ -32,6 +32,7 @@
 #include "membrane/integrators/time_integrator.hpp"
 #include "membrane/system/second_order_system.hpp"
 
+#include <utility>
 #include <vector>
 
 namespace lamina::membrane {
@@ -68,6 +69,16 @@ private:
   void accelerate(const StateForces& f, Eigen::VectorXd& a) const;
   /// f.reaction from the accelerations @p a (SecondOrderSystem::reactions).
   void reactions(const Eigen::VectorXd& a, StateForces& f);
+  /// The first pass of step(): v_{n+1/2}, u_{n+1}, du from @p s, the
+  /// constrained DOFs at their velocity at @p th; @return the count of
+  /// non-finite values.
+  int drift(const State& s, double th);
+  /// The second pass of step() from the forces @p next at @p t1: a_{n+1},
+  /// v_{n+1} (rigid sets, constrained DOFs) and the constrained DOFs' m a +
+  /// f_int in inertia_; @return the count of non-finite values.
+  int kick(const State& s, double t1, const StateForces& next);
+  /// @return the places [first, last) in sorted_dof_ of the constrained DOFs in [@p i0, @p i1)
+  std::pair<int, int> constrainedIn(int i0, int i1) const;
 
   const SecondOrderSystem& system_;
   const ConstrainedDofs& cons_;
@@ -78,9 +89,10 @@ private:
   std::vector<double> rigid_mass_;
   StateForces cur_, prev_;
   Eigen::VectorXd vh_, u1_, v1_, a1_, du_;
-  Eigen::VectorXd inertia_; // m a + f_int at the constrained DOFs
-  SurfaceMotion surf1_;     // the surfaces at t_{n+1}
-  Eigen::VectorXd svh_;     // and their mid-step velocities
+  Eigen::VectorXd inertia_;              // m a + f_int at the constrained DOFs
+  std::vector<int> by_dof_, sorted_dof_; // the constrained DOFs' k and DOF, by DOF
+  SurfaceMotion surf1_;                  // the surfaces at t_{n+1}
+  Eigen::VectorXd svh_;                  // and their mid-step velocities
 };
 
 } // namespace lamina::membrane
