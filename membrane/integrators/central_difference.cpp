@@ -193,6 +193,13 @@ int CentralDifference::kick(const State& s, double t1, const StateForces& next) 
   const ForceTotal total(next, system_.hasExternal(), system_.hasDrag());
   const double *vh = vh_.data(), *minv = minv_.data(), *m = system_.lumpedMass().data();
   double *a1 = a1_.data(), *v1 = v1_.data();
+  auto constrain = [&](int c) { // the constrained DOF at place c of sorted_dof_
+    const int d = sorted_dof_[c], k = by_dof_[c];
+    v1[d] = cons_.velocity(static_cast<size_t>(k), t1);
+    a1[d] = (v1[d] - s.v[d]) / dt_;
+    inertia_[k] = m[d] * a1[d] + next.internal[d];
+    return !std::isfinite(v1[d]) || !std::isfinite(a1[d]);
+  };
 #pragma omp parallel reduction(+ : non_finite) if (n > kParallelDofs)
   {
     const auto [i0, i1] = core::threadRange(n);
@@ -202,13 +209,8 @@ int CentralDifference::kick(const State& s, double t1, const StateForces& next) 
       non_finite += !fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i]));
     }
     const auto [c0, c1] = in_shares ? constrainedIn(i0, i1) : std::pair<int, int>(0, 0);
-    for (int c = c0; c < c1; ++c) {
-      const int d = sorted_dof_[c], k = by_dof_[c];
-      v1[d] = cons_.velocity(static_cast<size_t>(k), t1);
-      a1[d] = (v1[d] - s.v[d]) / dt_;
-      non_finite += !std::isfinite(v1[d]) || !std::isfinite(a1[d]);
-      inertia_[k] = m[d] * a1[d] + next.internal[d];
-    }
+    for (int c = c0; c < c1; ++c)
+      non_finite += constrain(c);
   }
   if (in_shares)
     return non_finite;
@@ -218,13 +220,8 @@ int CentralDifference::kick(const State& s, double t1, const StateForces& next) 
       v1[d] = vh[d] + h * a1[d];
       non_finite += !fixed[d] && (!std::isfinite(v1[d]) || !std::isfinite(a1[d]));
     }
-  for (size_t k = 0; k < cons_.size(); ++k) {
-    const int d = cons_.dofs()[k];
-    v1[d] = cons_.velocity(k, t1);
-    a1[d] = (v1[d] - s.v[d]) / dt_;
-    non_finite += !std::isfinite(v1[d]) || !std::isfinite(a1[d]);
-    inertia_[static_cast<Eigen::Index>(k)] = m[d] * a1[d] + next.internal[d];
-  }
+  for (int c = 0; c < static_cast<int>(sorted_dof_.size()); ++c)
+    non_finite += constrain(c);
   return non_finite;
 }
 

@@ -386,7 +386,7 @@ void LargeDeflection::groupForces(int g, const double* x, const Eigen::VectorXd&
                                   core::ParallelErrors& errors) const {
   const int ne = body_.mesh.numElements(), e0 = g * kLawLanes, n = std::min(kLawLanes, ne - e0);
   const int* corner = plan_.corner.data();
-  double* deferred = deferred_f_.data();
+  double* deferred = plan_.deferred_f.data();
   auto add = [&](int e, const double* out) { // each corner's force to its node or its place
     for (int a = 0; a < 3; ++a) {
       const int code = corner[3 * static_cast<size_t>(e) + a];
@@ -459,7 +459,7 @@ void LargeDeflection::planCorners(int threads) const {
   }
   if (!later.empty())
     plan.deferred_start.push_back(static_cast<int>(later.size()));
-  deferred_f_.assign(3 * later.size(), 0.0);
+  plan.deferred_f.assign(3 * later.size(), 0.0);
   plan.threads = threads;
   plan_ = std::move(plan);
 }
@@ -494,7 +494,7 @@ void LargeDeflection::internalForce(const Eigen::VectorXd& u, Eigen::VectorXd& f
       double* fi = fp + 3 * static_cast<size_t>(plan_.deferred_node[k]);
       for (int d = plan_.deferred_start[k]; d < plan_.deferred_start[k + 1]; ++d)
         for (int c = 0; c < 3; ++c)
-          fi[c] += deferred_f_[3 * static_cast<size_t>(d) + c];
+          fi[c] += plan_.deferred_f[3 * static_cast<size_t>(d) + c];
     }
   }
   errors.rethrow();

@@ -160,7 +160,7 @@ private:
   void elementForce(int e, const double* x, const Eigen::VectorXd& u, double* out,
                     core::ParallelErrors& errors) const;
   /// Adds the forces of group @p g's elements to @p f (its nodes held by
-  /// this thread first) or to deferred_f_ (planCorners()).
+  /// this thread first) or to the plan's deferred_f (planCorners()).
   void groupForces(int g, const double* x, const Eigen::VectorXd& u, double* f,
                    core::ParallelErrors& errors) const;
   /// Where each corner's force goes when a team of @p threads takes the
@@ -169,17 +169,17 @@ private:
   /// The element forces summed at the nodes without a buffer per corner:
   /// the thread whose share holds a node's first element adds that
   /// element's force and those of its later elements in its share directly
-  /// to f; a later thread's corner waits in deferred_f_ and is added after
+  /// to f; a later thread's corner waits in deferred_f and is added after
   /// the team's barrier. Each node's sum is then taken in element order
   /// from zero, as one thread would: the same bits at any team size.
   struct CornerPlan {
     int threads = 0;                 ///< the team size planned for (0: none)
-    std::vector<int> corner;         ///< 3 e + a -> its node i, or -1 - its place in deferred_f_
+    std::vector<int> corner;         ///< 3 e + a -> its node i, or -1 - its place in deferred_f
     std::vector<int> deferred_node;  ///< the nodes with deferred corners, ascending
-    std::vector<int> deferred_start; ///< their places [start, next start) in deferred_f_
+    std::vector<int> deferred_start; ///< their places [start, next start) in deferred_f
+    std::vector<double> deferred_f;  ///< the deferred corners' forces, 3 per place (N)
   };
   mutable CornerPlan plan_;
-  mutable std::vector<double> deferred_f_; // 3 per deferred corner (N)
   /// The force of a nonlinear element at F (trial history), into @p out (9).
   void lawElementForce(int e, const Eigen::Matrix<double, 3, 2>& F, double* out) const;
   /// The forces of the @p n (<= kLawLanes) elements from @p e0 of a lane
