@@ -65,6 +65,49 @@ struct ForceTotal {
   }
 };
 
+/// The drift on the DOFs [@p i0, @p i1) in lanes: vh = v + h a, u1 = u + dt vh,
+/// du = u1 - u. @return how many u1 there are not finite (constrained DOFs
+/// included: the caller corrects their count when it sets them).
+LAMINA_VECTOR_CLONES int driftLanes(const double* __restrict u, const double* __restrict v,
+                                    const double* __restrict a, double h, double dt,
+                                    double* __restrict vh, double* __restrict u1,
+                                    double* __restrict du, int i0, int i1) {
+  core::LaneMask bad = 0;
+#pragma omp simd reduction(+ : bad)
+  for (int i = i0; i < i1; ++i) {
+    const double w = v[i] + h * a[i];
+    const double x = u[i] + dt * w;
+    vh[i] = w;
+    u1[i] = x;
+    du[i] = x - u[i];
+    bad += 1 - core::finiteLane(x);
+  }
+  return static_cast<int>(bad);
+}
+
+/// The kick on the DOFs [@p i0, @p i1) in lanes when the only forces are the
+/// external force (@p Ext), the drag (@p Drag) and the internal force:
+/// a1 = minv ((ext + drag) - fi) (+0 for an absent term, as ForceTotal),
+/// v1 = vh + h a1. @return how many DOFs there have a1 or v1 not finite
+/// (constrained DOFs included: the caller corrects them).
+template <bool Ext, bool Drag>
+LAMINA_VECTOR_CLONES int kickLanes(const double* __restrict ext, const double* __restrict drag,
+                                   const double* __restrict fi, const double* __restrict minv,
+                                   const double* __restrict vh, double h, double* __restrict a1,
+                                   double* __restrict v1, int i0, int i1) {
+  core::LaneMask bad = 0;
+#pragma omp simd reduction(+ : bad)
+  for (int i = i0; i < i1; ++i) {
+    const double t = ((Ext ? ext[i] : 0.0) + (Drag ? drag[i] : 0.0)) - fi[i];
+    const double acc = minv[i] * t;
+    const double vel = vh[i] + h * acc;
+    a1[i] = acc;
+    v1[i] = vel;
+    bad += 1 - core::finiteLane(acc) * core::finiteLane(vel);
+  }
+  return static_cast<int>(bad);
+}
+
 /// A rigid set's DOFs take its total force over its total mass @p mass.
 void accelerateRigid(const std::vector<RigidSet>& rigid, const std::vector<double>& mass,
                      const ForceTotal& total, double* a) {
@@ -154,21 +197,16 @@ int CentralDifference::drift(const State& s, double th) {
   u1_.resize(n);
   du_.resize(n);
   int non_finite = 0;
-  const char* fixed = cons_.mask().data();
   const double *u = s.u.data(), *v = s.v.data(), *a = s.a.data();
   double *vh = vh_.data(), *u1 = u1_.data(), *du = du_.data();
 #pragma omp parallel reduction(+ : non_finite) if (n > kParallelDofs)
   {
     const auto [i0, i1] = core::threadRange(n);
-    for (int i = i0; i < i1; ++i) {
-      vh[i] = v[i] + h * a[i];
-      u1[i] = u[i] + dt * vh[i];
-      du[i] = u1[i] - u[i];
-      non_finite += !fixed[i] && !std::isfinite(u1[i]);
-    }
+    non_finite += driftLanes(u, v, a, h, dt, vh, u1, du, i0, i1);
     const auto [c0, c1] = constrainedIn(i0, i1);
     for (int c = c0; c < c1; ++c) {
       const int d = sorted_dof_[c];
+      non_finite -= !std::isfinite(u1[d]); // counted by the lanes as a free DOF
       vh[d] = cons_.velocity(static_cast<size_t>(by_dof_[c]), th);
       u1[d] = u[d] + dt * vh[d];
       du[d] = u1[d] - u[d];
@@ -195,18 +233,35 @@ int CentralDifference::kick(const State& s, double t1, const StateForces& next) 
   double *a1 = a1_.data(), *v1 = v1_.data();
   auto constrain = [&](int c) { // the constrained DOF at place c of sorted_dof_
     const int d = sorted_dof_[c], k = by_dof_[c];
+    const int before = !std::isfinite(v1[d]) || !std::isfinite(a1[d]); // counted as free
     v1[d] = cons_.velocity(static_cast<size_t>(k), t1);
     a1[d] = (v1[d] - s.v[d]) / dt_;
     inertia_[k] = m[d] * a1[d] + next.internal[d];
-    return !std::isfinite(v1[d]) || !std::isfinite(a1[d]);
+    return (!std::isfinite(v1[d]) || !std::isfinite(a1[d])) - before;
+  };
+  // Lanes when the force is ext + drag - fi only, else ForceTotal DOF by DOF.
+  const bool lanes = !total.spring && !total.damp && !total.contact;
+  const auto lanesOf = [&](int i0, int i1) {
+    const double* fi = next.internal.data();
+    if (total.ext && total.drag)
+      return kickLanes<true, true>(total.ext, total.drag, fi, minv, vh, h, a1, v1, i0, i1);
+    if (total.ext)
+      return kickLanes<true, false>(total.ext, nullptr, fi, minv, vh, h, a1, v1, i0, i1);
+    if (total.drag)
+      return kickLanes<false, true>(nullptr, total.drag, fi, minv, vh, h, a1, v1, i0, i1);
+    return kickLanes<false, false>(nullptr, nullptr, fi, minv, vh, h, a1, v1, i0, i1);
   };
 #pragma omp parallel reduction(+ : non_finite) if (n > kParallelDofs)
   {
     const auto [i0, i1] = core::threadRange(n);
-    for (int i = i0; i < i1; ++i) {
-      a1[i] = minv[i] * total(i);
-      v1[i] = vh[i] + h * a1[i];
-      non_finite += !fixed[i] && (!std::isfinite(v1[i]) || !std::isfinite(a1[i]));
+    if (lanes) {
+      non_finite += lanesOf(i0, i1);
+    } else {
+      for (int i = i0; i < i1; ++i) {
+        a1[i] = minv[i] * total(i);
+        v1[i] = vh[i] + h * a1[i];
+        non_finite += !std::isfinite(v1[i]) || !std::isfinite(a1[i]);
+      }
     }
     const auto [c0, c1] = in_shares ? constrainedIn(i0, i1) : std::pair<int, int>(0, 0);
     for (int c = c0; c < c1; ++c)

@@ -1,6 +1,7 @@
 #include "membrane/integrators/newmark.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -20,6 +21,27 @@ SparseMatrix extractRows(const SparseMatrix& A, const std::vector<int>& rows) {
       t.emplace_back(static_cast<int>(k), static_cast<int>(it.col()), it.value());
   R.setFromTriplets(t.begin(), t.end());
   return R;
+}
+
+/// The correctors on the DOFs [@p i0, @p i1) in lanes: u1 = ut + c a1,
+/// v1 = vt + cw a1, du = u1 - u. @return how many DOFs there have u1, v1
+/// or a1 not finite.
+LAMINA_VECTOR_CLONES int correctLanes(const double* __restrict ut, const double* __restrict vt,
+                                      const double* __restrict a1, const double* __restrict u,
+                                      double c, double cw, double* __restrict u1,
+                                      double* __restrict v1, double* __restrict du, int i0,
+                                      int i1) {
+  core::LaneMask bad = 0;
+#pragma omp simd reduction(+ : bad)
+  for (int i = i0; i < i1; ++i) {
+    const double x = ut[i] + c * a1[i];
+    const double w = vt[i] + cw * a1[i];
+    u1[i] = x;
+    v1[i] = w;
+    du[i] = x - u[i];
+    bad += 1 - core::finiteLane(x) * core::finiteLane(w) * core::finiteLane(a1[i]);
+  }
+  return static_cast<int>(bad);
 }
 
 const SparseMatrix& requireStiffness(const SecondOrderSystem& system) {
@@ -262,8 +284,8 @@ void Newmark::solveAcceleration(const State& s, double t1) {
 }
 
 void Newmark::correct(const State& s, double t1) {
-  // u_{n+1}, v_{n+1} and the increment in one threaded pass, counting
-  // non-finite values on the way.
+  // u_{n+1}, v_{n+1} and the increment in one threaded pass of lanes,
+  // counting non-finite values on the way.
   const int n = system_.numDofs();
   u1_.resize(n);
   v1_.resize(n);
@@ -273,12 +295,10 @@ void Newmark::correct(const State& s, double t1) {
     const double cw = model_.time.beta1 * model_.time.dt, c = c_;
     const double *ut = ut_.data(), *vt = vt_.data(), *a1 = a1_.data(), *u = s.u.data();
     double *u1 = u1_.data(), *v1 = v1_.data(), *du = du_.data();
-#pragma omp parallel for schedule(static) reduction(+ : non_finite) if (n > kParallelDofs)
-    for (int i = 0; i < n; ++i) {
-      u1[i] = ut[i] + c * a1[i];
-      v1[i] = vt[i] + cw * a1[i];
-      du[i] = u1[i] - u[i];
-      non_finite += !std::isfinite(u1[i]) || !std::isfinite(v1[i]) || !std::isfinite(a1[i]);
+#pragma omp parallel reduction(+ : non_finite) if (n > kParallelDofs)
+    {
+      const auto [i0, i1] = core::threadRange(n);
+      non_finite += correctLanes(ut, vt, a1, u, c, cw, u1, v1, du, i0, i1);
     }
   }
   // Non-finite state: stop before committing it.

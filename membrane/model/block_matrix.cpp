@@ -17,6 +17,12 @@
 
 namespace lamina::membrane {
 
+namespace {
+/// Rows per slice of the split storage (BlockMatrix::storeSlices): the lanes
+/// of the split product.
+constexpr int kSlice = 4;
+} // namespace
+
 BlockMatrix::BlockMatrix(const SparseMatrix& A, BlockStorage storage) {
   LAMINA_CHECK(A.rows() % 3 == 0 && A.rows() == A.cols(), "BlockMatrix needs a 3n x 3n matrix");
   const int n = static_cast<int>(A.rows() / 3);
@@ -59,17 +65,7 @@ void BlockMatrix::storePlainBlocks(bool may_split) {
     split_ = m[2] == 0 && m[5] == 0 && m[6] == 0 && m[7] == 0;
   }
   if (split_) {
-    std::vector<double> v(5 * nb);
-    for (std::size_t b = 0; b < nb; ++b) {
-      const double* m = val_.data() + 9 * b;
-      double* w = v.data() + 5 * b;
-      w[0] = m[0]; // the 2x2 block column-major, then A(2,2)
-      w[1] = m[3];
-      w[2] = m[1];
-      w[3] = m[4];
-      w[4] = m[8];
-    }
-    val_ = std::move(v);
+    storeSlices();
     return;
   }
   // Column-major 3x3 blocks (plainRows() loads a column at once), one pad
@@ -81,6 +77,45 @@ void BlockMatrix::storePlainBlocks(bool may_split) {
     std::swap(m[5], m[7]);
   }
   val_.push_back(0.0);
+}
+
+void BlockMatrix::storeSlices() {
+  // Slice q holds rows [kSlice q, kSlice q + kSlice); its slot k holds block k
+  // of each of those rows (column and five values per lane), and a row shorter
+  // than the slice's longest ends in zero blocks on its own column.
+  const int n = n_;
+  const int slices = (n + kSlice - 1) / kSlice;
+  std::vector<int> sstart(slices + 1, 0);
+  for (int q = 0; q < slices; ++q) {
+    int len = 0;
+    for (int i = kSlice * q; i < std::min(n, kSlice * (q + 1)); ++i)
+      len = std::max(len, start_[i + 1] - start_[i]);
+    sstart[q + 1] = sstart[q] + len;
+  }
+  const auto slots = static_cast<std::size_t>(sstart[slices]);
+  std::vector<int> col(kSlice * slots);
+  std::vector<double> val(5 * kSlice * slots, 0.0);
+  for (int q = 0; q < slices; ++q)
+    for (int l = 0; l < kSlice; ++l) {
+      const int i = std::min(n - 1, kSlice * q + l); // lanes past the last row: zeros
+      const int len = kSlice * q + l < n ? start_[i + 1] - start_[i] : 0;
+      for (int k = 0; k < sstart[q + 1] - sstart[q]; ++k) {
+        const auto slot = static_cast<std::size_t>(sstart[q] + k);
+        col[kSlice * slot + l] = k < len ? col_[start_[i] + k] : i;
+        if (k >= len)
+          continue;
+        const double* m = val_.data() + 9 * static_cast<std::size_t>(start_[i] + k); // row-major
+        double* w = val.data() + 5 * kSlice * slot + l;
+        w[0] = m[0]; // a00, a10, a01, a11, a22, each kSlice lanes apart
+        w[kSlice] = m[3];
+        w[2 * kSlice] = m[1];
+        w[3 * kSlice] = m[4];
+        w[4 * kSlice] = m[8];
+      }
+    }
+  start_ = std::move(sstart);
+  col_ = std::move(col);
+  val_ = std::move(val);
 }
 
 void BlockMatrix::shareRepeatedRows() {
@@ -219,46 +254,79 @@ double plainRowsScalar(const int* start, const int* col, const double* val, cons
   return dot;
 }
 
-/// plainRowsScalar() for split blocks (m = a00 a10 a01 a11 a22 per block):
-/// the same products and sums without the terms that are exact zeros, so the
-/// same numbers as the 3x3 blocks (up to the sign of a zero).
-double splitRows(const int* start, const int* col, const double* val, const double* x, double* y,
-                 std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+/// Split blocks in slices (BlockMatrix::storeSlices) on the rows [i0, i1):
+/// per row the products and sums of plainRowsScalar() without the terms that
+/// are exact zeros, and the slice's padding adds zeros, so the same numbers
+/// as the 3x3 blocks (up to the sign of a zero). The lanes of a slice are
+/// its rows; rows of a slice outside [i0, i1) are computed, not stored.
+/// @return x.y on [i0, i1), summed in node order.
+double slicedRows(const int* sstart, const int* col, const double* val, const double* x, double* y,
+                  std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
   double dot = 0;
-  for (int i = i0; i < i1; ++i) {
-    double y0 = 0, y1 = 0, y2 = 0;
-    for (int b = start[i]; b < start[i + 1]; ++b) {
-      const double* m = val + 5 * static_cast<std::size_t>(b);
-      const double* xj = x + s * col[b];
-      const double a = xj[0], c = xj[o];
-      y0 += m[0] * a + m[2] * c;
-      y1 += m[1] * a + m[3] * c;
-      y2 += m[4] * xj[2 * o];
+  for (int q = i0 / kSlice; kSlice * q < i1; ++q) {
+    double y0[kSlice] = {}, y1[kSlice] = {}, y2[kSlice] = {};
+    for (int k = sstart[q]; k < sstart[q + 1]; ++k) {
+      const int* c = col + kSlice * static_cast<std::size_t>(k);
+      const double* m = val + 5 * kSlice * static_cast<std::size_t>(k);
+      for (int l = 0; l < kSlice; ++l) {
+        const double* xj = x + s * c[l];
+        const double a = xj[0], b = xj[o];
+        y0[l] += m[l] * a + m[2 * kSlice + l] * b;
+        y1[l] += m[kSlice + l] * a + m[3 * kSlice + l] * b;
+        y2[l] += m[4 * kSlice + l] * xj[2 * o];
+      }
     }
-    dot += storeRow(x, y, s, o, i, y0, y1, y2);
+    const int r0 = std::max(i0, kSlice * q), r1 = std::min(i1, kSlice * (q + 1));
+    for (int i = r0; i < r1; ++i) {
+      const int l = i - kSlice * q;
+      dot += storeRow(x, y, s, o, i, y0[l], y1[l], y2[l]);
+    }
   }
   return dot;
 }
 
 #if defined(__GNUC__) && defined(__x86_64__)
-/// splitRows() with the in-plane pair of a block in one SSE2 register
-/// (baseline x86-64): [y0, y1] += [a00, a10] x0 + [a01, a11] x1, the same
-/// multiplications and additions in the same order, so the same bits.
-double splitRowsSse2(const int* start, const int* col, const double* val, const double* x,
-                     double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+#define LAMINA_AVX2_SLICES 1
+static_assert(kSlice == 4, "the AVX2 kernel takes a slice in one 4-wide register");
+/// @return p[j[l]], l = 0..3 (the masked form: GCC 12 warns that the plain
+/// one reads an unset register)
+__attribute__((target("avx2"), always_inline)) inline __m256d gather(const double* p, __m128i j) {
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), p, j,
+                                  _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+}
+
+/// slicedRows() with a slice's four rows in one AVX2 register (x gathered):
+/// the same multiplications and additions in the same order per row (no
+/// FMA: no contraction), so the same bits.
+__attribute__((target("avx2"))) double slicedRowsAvx2(const int* sstart, const int* col,
+                                                      const double* val, const double* x, double* y,
+                                                      std::ptrdiff_t s, std::ptrdiff_t o, int i0,
+                                                      int i1) {
   double dot = 0;
-  for (int i = i0; i < i1; ++i) {
-    __m128d acc = _mm_setzero_pd();
-    double y2 = 0;
-    for (int b = start[i]; b < start[i + 1]; ++b) {
-      const double* m = val + 5 * static_cast<std::size_t>(b);
-      const double* xj = x + s * col[b];
-      acc = _mm_add_pd(acc, _mm_add_pd(_mm_mul_pd(_mm_loadu_pd(m), _mm_load1_pd(xj)),
-                                       _mm_mul_pd(_mm_loadu_pd(m + 2), _mm_load1_pd(xj + o))));
-      y2 += m[4] * xj[2 * o];
+  const __m128i stride = _mm_set1_epi32(static_cast<int>(s));
+
+  for (int q = i0 / kSlice; kSlice * q < i1; ++q) {
+    __m256d y0 = _mm256_setzero_pd(), y1 = y0, y2 = y0;
+    for (int k = sstart[q]; k < sstart[q + 1]; ++k) {
+      const double* m = val + 5 * kSlice * static_cast<std::size_t>(k);
+      const __m128i j = _mm_mullo_epi32(
+          _mm_loadu_si128(reinterpret_cast<const __m128i*>(col + kSlice * std::size_t(k))), stride);
+      const __m256d a = gather(x, j), b = gather(x + o, j);
+      y0 = _mm256_add_pd(y0, _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(m), a),
+                                           _mm256_mul_pd(_mm256_loadu_pd(m + 8), b)));
+      y1 = _mm256_add_pd(y1, _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(m + 4), a),
+                                           _mm256_mul_pd(_mm256_loadu_pd(m + 12), b)));
+      y2 = _mm256_add_pd(y2, _mm256_mul_pd(_mm256_loadu_pd(m + 16), gather(x + 2 * o, j)));
     }
-    dot +=
-        storeRow(x, y, s, o, i, _mm_cvtsd_f64(acc), _mm_cvtsd_f64(_mm_unpackhi_pd(acc, acc)), y2);
+    alignas(32) double v0[kSlice], v1[kSlice], v2[kSlice];
+    _mm256_store_pd(v0, y0);
+    _mm256_store_pd(v1, y1);
+    _mm256_store_pd(v2, y2);
+    const int r0 = std::max(i0, kSlice * q), r1 = std::min(i1, kSlice * (q + 1));
+    for (int i = r0; i < r1; ++i) {
+      const int l = i - kSlice * q;
+      dot += storeRow(x, y, s, o, i, v0[l], v1[l], v2[l]);
+    }
   }
   return dot;
 }
@@ -344,11 +412,12 @@ void BlockMatrix::useKernel(BlockKernel kernel) {
 double BlockMatrix::plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o,
                               int begin, int end) const {
   if (split_) {
-#if defined(__GNUC__) && defined(__x86_64__)
-    if (g_kernel == BlockKernel::Fastest)
-      return splitRowsSse2(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
+#ifdef LAMINA_AVX2_SLICES
+    static const bool avx2 = __builtin_cpu_supports("avx2");
+    if (avx2 && g_kernel == BlockKernel::Fastest)
+      return slicedRowsAvx2(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
 #endif
-    return splitRows(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
+    return slicedRows(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
   }
 #ifdef LAMINA_AVX_BLOCKS
   static const bool avx = __builtin_cpu_supports("avx");
@@ -395,6 +464,17 @@ double BlockMatrix::product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const 
 }
 
 Eigen::Matrix3d BlockMatrix::diagonalBlock(int i) const {
+  if (split_) { // slice i / kSlice, lane i % kSlice: the first slot on column i
+    const int q = i / kSlice, l = i % kSlice;
+    for (int k = start_[q]; k < start_[q + 1]; ++k)
+      if (col_[kSlice * static_cast<std::size_t>(k) + l] == i) {
+        const double* m = val_.data() + 5 * kSlice * static_cast<std::size_t>(k) + l;
+        Eigen::Matrix3d d;
+        d << m[0], m[2 * kSlice], 0, m[kSlice], m[3 * kSlice], 0, 0, 0, m[4 * kSlice];
+        return d;
+      }
+    return Eigen::Matrix3d::Zero();
+  }
   // Shared rows store column offsets (diagonal = 0), plain rows columns (= i).
   const bool shared = !kind_.empty();
   const int t = shared ? kind_[i] : i;
@@ -404,12 +484,6 @@ Eigen::Matrix3d BlockMatrix::diagonalBlock(int i) const {
   const int diagonal = shared ? 0 : i;
   for (int b = start[t]; b < start[t + 1]; ++b)
     if (cols[b] == diagonal) {
-      if (split_) {
-        const double* m = vals.data() + 5 * b;
-        Eigen::Matrix3d d;
-        d << m[0], m[2], 0, m[1], m[3], 0, 0, 0, m[4];
-        return d;
-      }
       if (shared) // row-major
         return Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(vals.data() + 9 * b);
       return Eigen::Map<const Eigen::Matrix3d>(vals.data() + 9 * b); // column-major

@@ -26,6 +26,13 @@
 /// the 3x3 blocks without the terms that are exact zeros (x + 0 = x for a
 /// finite x): the same numbers, up to the sign of a zero (with an infinite
 /// or NaN w the 3x3 kernel's 0 * w would have spread a NaN to u and v).
+/// Split blocks are stored in slices of four consecutive rows, block k of
+/// each row side by side (a row shorter than its slice's longest ends in
+/// zero blocks on its own column, 1 % more blocks on a gmsh square), so that
+/// the four rows of a slice are the four lanes of one AVX2 register, x
+/// gathered: each row's sum keeps its order, so the same bits as row by row,
+/// without the branch that ends each row of a few blocks (4 % off the
+/// Newmark step on the unstructured benchmark square, one thread).
 ///
 /// Two vector layouts. Interleaved (the solver's): dof 3 i + c. Planar (the
 /// CG iteration's): component c of node i at c n + i, three contiguous
@@ -67,8 +74,8 @@ enum class BlockStorage {
 
 /// Which code computes the plain-block product (unstructured meshes).
 enum class BlockKernel {
-  Fastest, ///< AVX for 3x3 blocks when the CPU has it, SSE2 for split blocks on
-           ///< x86-64, else Scalar (the default)
+  Fastest, ///< AVX for 3x3 blocks and AVX2 for split blocks when the CPU has
+           ///< them, else Scalar (the default)
   Scalar   ///< the portable loop a CPU without AVX runs (same bits)
 };
 
@@ -127,10 +134,13 @@ private:
   /// Plain storage: split blocks when @p may_split and every block
   /// decouples, else column-major 3x3 blocks.
   void storePlainBlocks(bool may_split);
+  /// Split blocks in slices of consecutive rows (the lanes of the product):
+  /// replaces start_, col_ and val_ (row-major 3x3 blocks) by the slices.
+  void storeSlices();
   /// y = A x on the rows [@p begin, @p end) of plain storage, component c
   /// of node j at s j + c o in x and y; @return x.y there (3x3 blocks on
-  /// AVX when the CPU has it, split blocks on SSE2 on x86-64; the same bits
-  /// as the scalar loops either way).
+  /// AVX and split blocks on AVX2 when the CPU has them; the same bits as
+  /// the scalar loops either way).
   double plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int begin,
                    int end) const;
   template <bool Dot>
@@ -143,10 +153,12 @@ private:
   std::vector<int> koff_;               // per entry: column node minus row node
   std::vector<double> kval_;            // per entry: 9 values, row-major
   std::vector<int> run_begin_;          // first node of each run of equal kind_, then n
-  std::vector<int> start_;              // block row pointers
-  std::vector<int> col_;                // block column (node) of each block
+  std::vector<int> start_;              // block row pointers; split: first slot per slice
+  std::vector<int> col_;                // block column (node) of each block; split: per
+                                        // slot, one per lane
   std::vector<double> val_;             // 9 values per block, column-major, then one pad;
-                                        // split: a00 a10 a01 a11 a22 per block
+                                        // split: per slot a00, a10, a01, a11, a22,
+                                        // each one per lane
   bool split_ = false;                  // plain storage in split blocks
   mutable std::vector<double> xs_, ys_; // planar scratch of multiply() (shared rows)
 };

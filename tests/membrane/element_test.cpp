@@ -300,6 +300,39 @@ TEST(BlockMatrix, SplitBlocksGiveTheBitsOfTheFullBlocks) {
     EXPECT_TRUE((B.diagonalBlock(i).array() == full.diagonalBlock(i).array()).all()) << i;
 }
 
+// Split blocks are stored in slices of four rows; a thread's share of the
+// rows need not start or end on a slice. A product over two parts split
+// inside a slice must give the whole product's rows, leave the rows outside
+// its part untouched, and return the parts of x.y (summed in node order, so
+// their sum equals the whole one to round-off: 1e-13 of sum |x_i y_i| over
+// about 3000 terms, each rounding ~1e-16 of that sum).
+TEST(BlockMatrix, SplitSlicesGiveTheRowsOfAnyPart) {
+  const Mesh irregular = perturbedGrid(30, 0.006, 17);
+  const auto g = assemble(irregular, {section(monoclinicD())}, false);
+  const BlockMatrix B(g.K);
+  ASSERT_TRUE(B.splitBlocks());
+  const int n = B.nodes();
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(3 * n);
+  for (const BlockKernel kernel : {BlockKernel::Fastest, BlockKernel::Scalar}) {
+    BlockMatrix::useKernel(kernel);
+    Eigen::VectorXd whole(3 * n);
+    const double dot = B.multiplyPlanar(x.data(), whole.data(), 0, n);
+    for (const int cut : {1, 2, 3, 5, n / 2 + 1, n - 1}) {
+      constexpr double kUntouched = 12345.0;
+      Eigen::VectorXd y = Eigen::VectorXd::Constant(3 * n, kUntouched);
+      const double d1 = B.multiplyPlanar(x.data(), y.data(), 0, cut);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(y[c * n + cut], kUntouched) << "cut " << cut;
+        EXPECT_EQ(y[c * n + cut - 1], whole[c * n + cut - 1]) << "cut " << cut;
+      }
+      const double d2 = B.multiplyPlanar(x.data(), y.data(), cut, n);
+      EXPECT_TRUE((y.array() == whole.array()).all()) << "cut " << cut;
+      EXPECT_NEAR(d1 + d2, dot, 1e-13 * x.cwiseProduct(whole).cwiseAbs().sum()) << "cut " << cut;
+    }
+  }
+  BlockMatrix::useKernel(BlockKernel::Fastest);
+}
+
 // The plain-block product has two kernels, AVX and the scalar loop a CPU
 // without AVX runs; both do the same operations in the same order (AVX
 // without FMA), so on an irregular mesh (plain storage) their products and
