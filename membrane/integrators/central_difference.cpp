@@ -188,6 +188,10 @@ std::pair<int, int> CentralDifference::constrainedIn(int i0, int i1) const {
           static_cast<int>(last - sorted_dof_.begin())};
 }
 
+bool CentralDifference::firstOf(int c, int c0) const {
+  return c == c0 || sorted_dof_[c - 1] != sorted_dof_[c];
+}
+
 int CentralDifference::drift(const State& s, double th) {
   // v_{n+1/2} = v_n + dt/2 a_n, u_{n+1} and du; each thread then sets the
   // constrained DOFs of its share (their data are near in its cache).
@@ -206,7 +210,8 @@ int CentralDifference::drift(const State& s, double th) {
     const auto [c0, c1] = constrainedIn(i0, i1);
     for (int c = c0; c < c1; ++c) {
       const int d = sorted_dof_[c];
-      non_finite -= !std::isfinite(u1[d]); // counted by the lanes as a free DOF
+      if (firstOf(c, c0)) // the lanes counted it as a free DOF
+        non_finite -= !std::isfinite(u1[d]);
       vh[d] = cons_.velocity(static_cast<size_t>(by_dof_[c]), th);
       u1[d] = u[d] + dt * vh[d];
       du[d] = u1[d] - u[d];
@@ -231,13 +236,13 @@ int CentralDifference::kick(const State& s, double t1, const StateForces& next) 
   const ForceTotal total(next, system_.hasExternal(), system_.hasDrag());
   const double *vh = vh_.data(), *minv = minv_.data(), *m = system_.lumpedMass().data();
   double *a1 = a1_.data(), *v1 = v1_.data();
+  const auto bad = [&](int d) { return int(!std::isfinite(v1[d]) || !std::isfinite(a1[d])); };
   auto constrain = [&](int c) { // the constrained DOF at place c of sorted_dof_
     const int d = sorted_dof_[c], k = by_dof_[c];
-    const int before = !std::isfinite(v1[d]) || !std::isfinite(a1[d]); // counted as free
     v1[d] = cons_.velocity(static_cast<size_t>(k), t1);
     a1[d] = (v1[d] - s.v[d]) / dt_;
     inertia_[k] = m[d] * a1[d] + next.internal[d];
-    return (!std::isfinite(v1[d]) || !std::isfinite(a1[d])) - before;
+    return bad(d);
   };
   // Lanes when the force is ext + drag - fi only, else ForceTotal DOF by DOF.
   const bool lanes = !total.spring && !total.damp && !total.contact;
@@ -263,9 +268,15 @@ int CentralDifference::kick(const State& s, double t1, const StateForces& next) 
         non_finite += !std::isfinite(v1[i]) || !std::isfinite(a1[i]);
       }
     }
-    const auto [c0, c1] = in_shares ? constrainedIn(i0, i1) : std::pair<int, int>(0, 0);
-    for (int c = c0; c < c1; ++c)
-      non_finite += constrain(c);
+    // The lanes counted the constrained DOFs of this share as free: take
+    // their counts back before the rigid sets or the constraints set them.
+    const auto [c0, c1] = constrainedIn(i0, i1);
+    for (int c = c0; c < c1; ++c) {
+      if (firstOf(c, c0))
+        non_finite -= bad(sorted_dof_[c]);
+      if (in_shares)
+        non_finite += constrain(c);
+    }
   }
   if (in_shares)
     return non_finite;

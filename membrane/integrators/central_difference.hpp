@@ -79,6 +79,9 @@ private:
   int kick(const State& s, double t1, const StateForces& next);
   /// @return the places [first, last) in sorted_dof_ of the constrained DOFs in [@p i0, @p i1)
   std::pair<int, int> constrainedIn(int i0, int i1) const;
+  /// @return whether place @p c of sorted_dof_ is the first of its DOF (a DOF
+  /// in two constraint sets has two adjacent places) in a share starting at @p c0
+  bool firstOf(int c, int c0) const;
 
   const SecondOrderSystem& system_;
   const ConstrainedDofs& cons_;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -84,6 +85,9 @@ void BlockMatrix::storeSlices() {
   // of each of those rows (column and five values per lane), and a row shorter
   // than the slice's longest ends in zero blocks on its own column.
   const int n = n_;
+  // The AVX2 kernel gathers at s j + c o < 3 n as 32-bit indices.
+  LAMINA_CHECK(3LL * n <= std::numeric_limits<int>::max(), "BlockMatrix: ", n,
+               " nodes are more than the split product indexes");
   const int slices = (n + kSlice - 1) / kSlice;
   std::vector<int> sstart(slices + 1, 0);
   for (int q = 0; q < slices; ++q) {
@@ -257,7 +261,8 @@ double plainRowsScalar(const int* start, const int* col, const double* val, cons
 /// Split blocks in slices (BlockMatrix::storeSlices) on the rows [i0, i1):
 /// per row the products and sums of plainRowsScalar() without the terms that
 /// are exact zeros, and the slice's padding adds zeros, so the same numbers
-/// as the 3x3 blocks (up to the sign of a zero). The lanes of a slice are
+/// as the 3x3 blocks (up to the sign of a zero; for a finite x: with an
+/// infinite x_i the padding's 0 x_i makes row i NaN). The lanes of a slice are
 /// its rows; rows of a slice outside [i0, i1) are computed, not stored.
 /// @return x.y on [i0, i1), summed in node order.
 double slicedRows(const int* sstart, const int* col, const double* val, const double* x, double* y,

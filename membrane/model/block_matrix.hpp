@@ -30,9 +30,10 @@
 /// each row side by side (a row shorter than its slice's longest ends in
 /// zero blocks on its own column, 1 % more blocks on a gmsh square), so that
 /// the four rows of a slice are the four lanes of one AVX2 register, x
-/// gathered: each row's sum keeps its order, so the same bits as row by row,
-/// without the branch that ends each row of a few blocks (4 % off the
-/// Newmark step on the unstructured benchmark square, one thread).
+/// gathered: each row's sum keeps its order, so the same bits as row by row
+/// (for a finite x: a padding block adds 0 x_i, which turns an infinite x_i
+/// into NaN in row i, non-finite either way), without the branch that ends
+/// each row of a few blocks.
 ///
 /// Two vector layouts. Interleaved (the solver's): dof 3 i + c. Planar (the
 /// CG iteration's): component c of node i at c n + i, three contiguous
@@ -76,15 +77,16 @@ enum class BlockStorage {
 enum class BlockKernel {
   Fastest, ///< AVX for 3x3 blocks and AVX2 for split blocks when the CPU has
            ///< them, else Scalar (the default)
-  Scalar   ///< the portable loop a CPU without AVX runs (same bits)
+  Scalar   ///< the portable loop a CPU without AVX (3x3) or AVX2 (split) runs
+           ///< (same bits)
 };
 
 /// 3x3-block compressed sparse rows.
 class BlockMatrix {
 public:
   /// Chooses the plain-block kernel of every BlockMatrix of the process
-  /// (tests compare the two on a CPU that has AVX; not thread-safe against
-  /// products running at the same time).
+  /// (tests compare the two on a CPU that has AVX and AVX2; not thread-safe
+  /// against products running at the same time).
   static void useKernel(BlockKernel kernel);
   BlockMatrix() = default;
   /// Copies @p A (3n x 3n, full 3x3 blocks) in the storage @p storage.

@@ -1,16 +1,21 @@
 // The central-difference passes in lanes (the drift and the kick, compiled
-// for several vector widths) give the state of the DOF-by-DOF loop, bit for
-// bit. The kick takes the lanes when the force is external + drag -
-// internal only, and the DOF-by-DOF loop when a spring, damping or contact
-// force is present. A spring on clamped DOFs adds exact zeros to the free
-// DOFs' forces (its own DOFs are then set by their constraint), so the run
-// with it takes the loop and must reach the very numbers of the run without
-// it: both models, with and without pressure and drag (each of the kick's
-// four lane kernels), a moving strike among the constrained DOFs.
+// for several vector widths):
+// - the kick takes the lanes when the force is external + drag - internal
+//   only, and the DOF-by-DOF loop when a spring, damping or contact force is
+//   present. A spring on clamped DOFs adds exact zeros to the free DOFs'
+//   forces (its own DOFs are then set by their constraint), so the run with
+//   it takes the loop and must reach the very numbers of the run without it:
+//   both models, with and without pressure and drag (each of the kick's four
+//   lane kernels), a moving strike among the constrained DOFs;
+// - the drift gives u_{n+1} = u_n + dt (v_n + dt/2 a_n) of every free DOF
+//   bit for bit, written out here DOF by DOF;
+// - a state that overflows is caught in the lanes (the constrained DOFs'
+//   corrections of the count do not hide it): DivergenceError at the step.
 #include "helpers.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 
 using namespace lamina::membrane;
@@ -52,4 +57,47 @@ TEST(CentralDifferenceLanes, GiveTheBitsOfTheLoopOverDofs) {
         differ += !(lanes[i] == loop[i]); // == : +0 and -0 are the same number
       EXPECT_EQ(differ, 0) << model << "loads " << loads;
     }
+}
+
+TEST(CentralDifferenceLanes, DriftIsTheUpdateOfEachDof) {
+  for (const std::string model : {"", "model = \"large_deflection\"\n"}) {
+    const Model m = test::modelFromText(
+        model + test::isotropicSquare(8) +
+        "[time]\nintegrator = \"explicit\"\ndt = 2.0e-6\nt_end = 1.0\n"
+        "[[fixed]]\nnodes = \"left\"\n[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n" +
+        kPressure);
+    Simulation sim(m);
+    const double dt = 2.0e-6, h = 0.5 * dt;
+    const std::vector<char>& fixed = sim.system().constraints().mask();
+    for (int n = 0; n < 30; ++n) {
+      const Eigen::VectorXd u = sim.u(), v = sim.v(), a = sim.a();
+      sim.step();
+      Eigen::Index differ = 0;
+      for (Eigen::Index i = 0; i < u.size(); ++i) {
+        const double vh = v[i] + h * a[i];
+        differ += !fixed[i] && !(sim.u()[i] == u[i] + dt * vh);
+      }
+      ASSERT_EQ(differ, 0) << model << "step " << n;
+    }
+  }
+}
+
+TEST(CentralDifferenceLanes, OverflowIsCaughtAtItsStep) {
+  // A strike at 1e306 m/s: the struck node's neighbours take forces that
+  // overflow their accelerations within a few steps.
+  for (const std::string model : {"", "model = \"large_deflection\"\n"}) {
+    const Model m = test::modelFromText(
+        model + test::isotropicSquare(8) +
+        "[time]\nintegrator = \"explicit\"\ndt = 2.0e-6\nt_end = 1.0\n"
+        "[[fixed]]\nnodes = \"left\"\n[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0e306\n");
+    Simulation sim(m);
+    std::string message;
+    try {
+      for (int n = 0; n < 20; ++n)
+        sim.step();
+    } catch (const lamina::DivergenceError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find("non-finite state"), std::string::npos) << model << message;
+  }
 }
