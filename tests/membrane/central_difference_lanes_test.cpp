@@ -33,6 +33,17 @@ Eigen::VectorXd finalState(const std::string& text) {
   return s;
 }
 
+/// @return an 8 x 8 sheet of @p model ("" linear) stepped explicitly at
+/// 2e-6 s, its left edge clamped, its centre struck at @p speed, then @p extra
+std::string clampedSheet(const std::string& model, const char* speed, const std::string& extra) {
+  return model + test::isotropicSquare(8) +
+         "[time]\nintegrator = \"explicit\"\ndt = 2.0e-6\nt_end = 1.0\n"
+         "[[fixed]]\nnodes = \"left\"\n[[strike]]\nat = [0.5, 0.5]\nspeed = " +
+         speed + "\n" + extra;
+}
+
+const char* const kModels[] = {"", "model = \"large_deflection\"\n"};
+
 const char* const kPressure = "[[load]]\ntype = \"pressure\"\nvalue = 3000.0\nprofile = \"pulse\"\n"
                               "duration = 2.0e-4\n";
 const char* const kDrag = "[[drag]]\ncd = 1.5\n";
@@ -41,13 +52,10 @@ const char* const kSpringOnClamp = "[[spring]]\nnodes = \"left\"\ncomponents = \
 } // namespace
 
 TEST(CentralDifferenceLanes, GiveTheBitsOfTheLoopOverDofs) {
-  for (const std::string model : {"", "model = \"large_deflection\"\n"})
+  for (const std::string model : kModels)
     for (int loads = 0; loads < 4; ++loads) {
-      const std::string text =
-          model + test::isotropicSquare(8) +
-          "[time]\nintegrator = \"explicit\"\ndt = 2.0e-6\nt_end = 1.0\n"
-          "[[fixed]]\nnodes = \"left\"\n[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n" +
-          ((loads & 1) ? kPressure : "") + ((loads & 2) ? kDrag : "");
+      const std::string text = clampedSheet(
+          model, "1.0", std::string((loads & 1) ? kPressure : "") + ((loads & 2) ? kDrag : ""));
       const Eigen::VectorXd lanes = finalState(text);
       const Eigen::VectorXd loop = finalState(text + kSpringOnClamp);
       ASSERT_EQ(lanes.size(), loop.size());
@@ -60,12 +68,8 @@ TEST(CentralDifferenceLanes, GiveTheBitsOfTheLoopOverDofs) {
 }
 
 TEST(CentralDifferenceLanes, DriftIsTheUpdateOfEachDof) {
-  for (const std::string model : {"", "model = \"large_deflection\"\n"}) {
-    const Model m = test::modelFromText(
-        model + test::isotropicSquare(8) +
-        "[time]\nintegrator = \"explicit\"\ndt = 2.0e-6\nt_end = 1.0\n"
-        "[[fixed]]\nnodes = \"left\"\n[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0\n" +
-        kPressure);
+  for (const std::string model : kModels) {
+    const Model m = test::modelFromText(clampedSheet(model, "1.0", kPressure));
     Simulation sim(m);
     const double dt = 2.0e-6, h = 0.5 * dt;
     const std::vector<char>& fixed = sim.system().constraints().mask();
@@ -85,11 +89,8 @@ TEST(CentralDifferenceLanes, DriftIsTheUpdateOfEachDof) {
 TEST(CentralDifferenceLanes, OverflowIsCaughtAtItsStep) {
   // A strike at 1e306 m/s: the struck node's neighbours take forces that
   // overflow their accelerations within a few steps.
-  for (const std::string model : {"", "model = \"large_deflection\"\n"}) {
-    const Model m = test::modelFromText(
-        model + test::isotropicSquare(8) +
-        "[time]\nintegrator = \"explicit\"\ndt = 2.0e-6\nt_end = 1.0\n"
-        "[[fixed]]\nnodes = \"left\"\n[[strike]]\nat = [0.5, 0.5]\nspeed = 1.0e306\n");
+  for (const std::string model : kModels) {
+    const Model m = test::modelFromText(clampedSheet(model, "1.0e306", ""));
     Simulation sim(m);
     std::string message;
     try {
