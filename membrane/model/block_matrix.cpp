@@ -203,12 +203,24 @@ double runProduct(const int* off, const double* m, int nb, int n, const double* 
   double* __restrict y0 = y;
   double* __restrict y1 = y + n;
   double* __restrict y2 = y + 2 * static_cast<std::ptrdiff_t>(n);
-  for (int i = i0; i < i1; ++i)
-    y0[i] = y1[i] = y2[i] = 0;
+  // The first block's terms are added to an explicit +0 (0 + t, the bits of
+  // a zeroed y plus t) instead of a zeroing pass before.
+  if (nb == 0)
+    for (int i = i0; i < i1; ++i)
+      y0[i] = y1[i] = y2[i] = 0;
   for (int b = 0; b < nb; ++b, m += 9) {
     const std::ptrdiff_t o = off[b];
     const double m0 = m[0], m1 = m[1], m2 = m[2], m3 = m[3], m4 = m[4], m5 = m[5], m6 = m[6],
                  m7 = m[7], m8 = m[8];
+    if (b == 0) {
+      for (int i = i0; i < i1; ++i) {
+        const double a = x0[i + o], c = x1[i + o], d = x2[i + o];
+        y0[i] = 0.0 + (m0 * a + m1 * c + m2 * d);
+        y1[i] = 0.0 + (m3 * a + m4 * c + m5 * d);
+        y2[i] = 0.0 + (m6 * a + m7 * c + m8 * d);
+      }
+      continue;
+    }
     for (int i = i0; i < i1; ++i) {
       const double a = x0[i + o], c = x1[i + o], d = x2[i + o];
       y0[i] += m0 * a + m1 * c + m2 * d;
