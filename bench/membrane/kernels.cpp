@@ -23,7 +23,8 @@
 //   same blocks, pattern and preconditioner) for b = A x_r (x_r random),
 //   from x = 0 to the case's tolerance, divided by its iterations; the time
 //   includes the solve's start (x zeroed, residual, planar copies), shared
-//   over its iterations;
+//   over its iterations; on split blocks also for b without in-plane part
+//   (a transverse load: the products compute the normal plane alone);
 // - one explicit (central-difference) step of the large-deflection fabric
 //   model and its internal force, and one explicit step of the linear model.
 // Wall times are the best of the repetitions (the machine is shared: the
@@ -170,6 +171,12 @@ Products products(Report& report, const membrane::SparseMatrix& K, bool all) {
   return {floor, solver};
 }
 
+/// @return true when the solver stores @p A in split blocks
+bool solverSplit(const membrane::SparseMatrix& A) {
+  const membrane::BlockMatrix B(A);
+  return B.sharedRows() == 0 && B.splitBlocks();
+}
+
 /// One CG solve of A = M + tau^2 beta2 / 2 (1 + alpha) K of @p sim's Newmark
 /// scheme (no constraint rows) for b = A x_r from x = 0 (file comment);
 /// prints it per iteration against @p floor.
@@ -188,6 +195,22 @@ void cgIteration(Report& report, const membrane::Simulation& sim, Timing floor) 
   std::printf("  (CG iterations of that solve: %d)\n", iterations);
   report["cg_solve_iterations"] = iterations;
   report.ratio("cg_iteration/floor", "CG iteration / floor", per(solve, iterations), floor);
+  if (!solverSplit(A))
+    return;
+  // The same with b's in-plane components zero (a transverse load): split
+  // blocks, so the products compute the normal plane alone.
+  Eigen::VectorXd bt = b;
+  for (Eigen::Index i = 0; i < bt.size(); i += 3)
+    bt[i] = bt[i + 1] = 0;
+  int normal_iterations = 0;
+  const Timing normal =
+      report.time("cg_solve_normal", "CG solve, transverse b (normal plane alone)", 10, [&] {
+        x.setZero(A.rows());
+        normal_iterations = solver.solve(bt, x);
+      });
+  std::printf("  (CG iterations of that solve: %d)\n", normal_iterations);
+  report.ratio("cg_iteration_normal/floor", "CG iteration, normal plane alone / floor",
+               per(normal, normal_iterations), floor);
 }
 
 /// The Newmark step (CG) of @p model, against @p floor, then one CG iteration.

@@ -8,6 +8,7 @@
 #include <Eigen/CholmodSupport>
 #endif
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstddef>
@@ -121,6 +122,7 @@ LAMINA_VECTOR_CLONES void directionNodes(const double* P, int n, double beta,
 /// one cache line per thread.
 struct alignas(64) Partial {
   double v[2][2] = {{0, 0}, {0, 0}};
+  bool inplane = false; ///< an in-plane component of x or r not zero on the thread's rows
 };
 } // namespace
 
@@ -178,6 +180,10 @@ StepSolver::StepSolver(const SparseMatrix& A, LinearSolverKind kind, double tole
   }
   for (Eigen::VectorXd* v : {&xp_, &rp_, &pp_, &qp_})
     v->resize(n);
+  // The normal plane alone (cgThread) needs P r = 0 for r = 0 in the plane:
+  // finite in-plane blocks.
+  normal_plane_ = split && std::all_of(block_inverse_.begin(), block_inverse_.end(),
+                                       [](double v) { return std::isfinite(v); });
 }
 
 StepSolver::~StepSolver() = default;
@@ -265,19 +271,21 @@ void StepSolver::remember(const Eigen::VectorXd& x) {
 
 /// One CG solve, shared by the threads of its parallel region.
 struct StepSolver::CgRun {
-  int nn;                               ///< nodes: the stride of the planar vectors
-  double target;                        ///< converged when ||r|| <= target
-  Blocks blocks;                        ///< where a node's preconditioner block is
-  std::vector<Partial> partial;         ///< per thread: the reductions' partial sums
-  CgOutcome outcome = CgOutcome::limit; ///< thread 0's report, read after the region
-  double final_rr = 0;                  ///< r.r at the end
-  int iterations = 0;                   ///< iterations done
+  int nn;                                ///< nodes: the stride of the planar vectors
+  double target;                         ///< converged when ||r|| <= target
+  Blocks blocks;                         ///< where a node's preconditioner block is
+  std::vector<Partial> partial;          ///< per thread: the reductions' partial sums
+  CgOutcome outcome = CgOutcome::limit;  ///< thread 0's report, read after the region
+  double final_rr = 0;                   ///< r.r at the end
+  int iterations = 0;                    ///< iterations done
+  BlockPlanes planes = BlockPlanes::All; ///< the planes the products computed
 };
 
 /// One thread's share of a CG solve: its nodes [i0, i1) and its partial sums.
 struct StepSolver::CgThread {
   CgRun& run;
   int tid, nt, i0, i1;
+  BlockPlanes planes = BlockPlanes::All; ///< the planes the products compute
   /// Stores this thread's partial sums z.r and r.r in @p slot.
   void publish(int slot, double rz, double rr) {
     run.partial[tid].v[slot][0] = rz;
@@ -302,6 +310,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
   // recompute it from r (a 3x3 product is cheaper than a pass over memory).
   const int n = static_cast<int>(b.size());
   const double bnorm = b.norm();
+  last_planes_ = BlockPlanes::All;
   if (!(bnorm > 0)) {
     x.setZero(n);
     return;
@@ -322,6 +331,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
     cgThread(t, r0, have_residual, x);
   }
   iterations = run.iterations;
+  last_planes_ = run.planes;
   if (run.outcome == CgOutcome::breakdown)
     throw DivergenceError("CG breakdown: A is not positive definite or the step diverged");
   if (run.outcome == CgOutcome::limit)
@@ -337,10 +347,22 @@ void StepSolver::cgThread(CgThread& t, const double* r0, bool have_residual, Eig
   double* qp = qp_.data();
   toPlanar(x.data(), xp, nn, t.i0, t.i1);
   toPlanar(r0, rp, nn, t.i0, t.i1);
+  const bool may_skip = normal_plane_ && BlockMatrix::skipsZeroPlanes();
+  if (may_skip)
+    t.run.partial[t.tid].inplane =
+        !inPlaneZero(xp, 1, nn, t.i0, t.i1) || !inPlaneZero(rp, 1, nn, t.i0, t.i1);
 #pragma omp barrier
-  if (!have_residual) { // r = b - A x
-    Ab_.multiplyPlanar(xp, qp, t.i0, t.i1);
-    for (int c = 0; c < 3; ++c)
+  if (may_skip && normalPlaneOnly(t)) {
+    // x and r without in-plane part, A without coupling: the in-plane parts
+    // of r, P r, p and A p stay zero through the solve (A p's are +0, held
+    // in q from here), so the products compute the normal plane alone.
+    t.planes = BlockPlanes::Normal;
+    std::fill(qp + t.i0, qp + t.i1, 0.0);
+    std::fill(qp + nn + t.i0, qp + nn + t.i1, 0.0);
+  }
+  if (!have_residual) { // r = b - A x (r - (+0) = r in the planes not computed)
+    Ab_.multiplyPlanar(xp, qp, t.i0, t.i1, t.planes);
+    for (int c = t.planes == BlockPlanes::Normal ? 2 : 0; c < 3; ++c)
       for (int i = t.i0; i < t.i1; ++i)
         rp[c * static_cast<std::ptrdiff_t>(nn) + i] -= qp[c * static_cast<std::ptrdiff_t>(nn) + i];
   }
@@ -357,13 +379,14 @@ void StepSolver::cgThread(CgThread& t, const double* r0, bool have_residual, Eig
     t.run.outcome = result;
     t.run.final_rr = rr;
     t.run.iterations = std::min(it, max_iterations_);
+    t.run.planes = t.planes;
   }
 }
 
 StepSolver::CgOutcome StepSolver::cgIterate(CgThread& t, double rz, double& rr, int& it) {
   for (it = 1; it <= max_iterations_; ++it) {
     t.run.partial[t.tid].v[0][0] =
-        Ab_.multiplyPlanar(pp_.data(), qp_.data(), t.i0, t.i1); // q = A p, p.q
+        Ab_.multiplyPlanar(pp_.data(), qp_.data(), t.i0, t.i1, t.planes); // q = A p, p.q
 #pragma omp barrier
     const double pq = t.total(0, 0);
     if (!(pq > 0) || !std::isfinite(pq))
@@ -384,6 +407,13 @@ StepSolver::CgOutcome StepSolver::cgIterate(CgThread& t, double rz, double& rr, 
 #pragma omp barrier
   }
   return CgOutcome::limit;
+}
+
+bool StepSolver::normalPlaneOnly(const CgThread& t) const {
+  for (int k = 0; k < t.nt; ++k)
+    if (t.run.partial[k].inplane)
+      return false;
+  return true;
 }
 
 void StepSolver::cgUpdate(const CgThread& t, double alpha, double& rz, double& rr) {

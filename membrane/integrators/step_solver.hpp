@@ -8,9 +8,13 @@
 /// blocks of A, warm-started from the x passed in, stopped when
 /// ||b - A x|| <= tolerance ||b||. The iteration runs on planar copies of
 /// its vectors (BlockMatrix) in one OpenMP region for matrices above 30,000
-/// rows. "cholesky": a sparse Cholesky
-/// factorization (CHOLMOD supernodal when built with it, else Eigen's
-/// SimplicialLDLT), exact to round-off.
+/// rows. When A has split blocks (no coupling of the in-plane and normal
+/// components) and the in-plane parts of b and the start are zero (the
+/// linear membrane under transverse load), the in-plane parts stay zero
+/// through the iteration and its products compute the normal plane alone
+/// (BlockPlanes::Normal): the same bits as the full products. "cholesky": a
+/// sparse Cholesky factorization (CHOLMOD supernodal when built with it,
+/// else Eigen's SimplicialLDLT), exact to round-off.
 ///
 /// The CG start: when @p projection > 0, the initial guess is the A-orthogonal
 /// projection of the solution on the span of the last solutions (Fischer,
@@ -51,6 +55,9 @@ public:
   long totalIterations() const { return total_iterations_; }
   /// @return number of solves
   long solves() const { return solves_; }
+  /// @return the planes the products of the last CG solve computed
+  /// (BlockPlanes::Normal: the normal plane alone, see the file comment)
+  BlockPlanes lastPlanes() const { return last_planes_; }
   /// Saves the counters and the projection basis (what later solves depend
   /// on) into @p h under keys starting with @p prefix.
   void saveHistory(const std::string& prefix, History& h) const;
@@ -75,15 +82,21 @@ private:
   void cgUpdate(const CgThread& t, double alpha, double& rz, double& rr);
   /// p = P r + beta p on the thread's nodes; adds z.r, r.r to @p rz, @p rr.
   void cgDirection(const CgThread& t, double beta, double& rz, double& rr);
+  /// @return true when no thread found an in-plane component of x or r not
+  /// zero (read after the barrier that follows the threads' checks)
+  bool normalPlaneOnly(const CgThread& t) const;
   void project(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   void remember(const Eigen::VectorXd& x);
   BlockMatrix Ab_; // the same matrix in 3x3 blocks, for the CG products
   LinearSolverKind kind_;
   double tolerance_;
   int max_iterations_;
-  std::vector<double> block_inverse_;   // block-Jacobi: 9 per shared row (row-major), else 9 or
-                                        // 5 (split) planes of one entry per node
-  int projection_ = 0;                  // max basis size (0 = off)
+  std::vector<double> block_inverse_; // block-Jacobi: 9 per shared row (row-major), else 9 or
+                                      // 5 (split) planes of one entry per node
+  int projection_ = 0;                // max basis size (0 = off)
+  BlockPlanes last_planes_ = BlockPlanes::All;
+  bool normal_plane_ = false;           // split blocks with finite inverses: the CG may
+                                        // run on the normal plane alone
   std::vector<Eigen::VectorXd> X_, AX_; // A-orthonormal past solutions and A X
   Eigen::VectorXd x0_, d_, ad_, r_;     // projection: start, new direction, A d, residual
   Eigen::VectorXd xp_, rp_, pp_, qp_;   // CG vectors, planar (component c of node i at c n + i)

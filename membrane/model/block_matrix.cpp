@@ -98,7 +98,7 @@ void BlockMatrix::storeSlices() {
   }
   const auto slots = static_cast<std::size_t>(sstart[slices]);
   std::vector<int> col(kSlice * slots);
-  std::vector<double> val(5 * kSlice * slots, 0.0);
+  std::vector<double> val(4 * kSlice * slots, 0.0), val22(kSlice * slots, 0.0);
   for (int q = 0; q < slices; ++q)
     for (int l = 0; l < kSlice; ++l) {
       const int i = std::min(n - 1, kSlice * q + l); // lanes past the last row: zeros
@@ -109,17 +109,18 @@ void BlockMatrix::storeSlices() {
         if (k >= len)
           continue;
         const double* m = val_.data() + 9 * static_cast<std::size_t>(start_[i] + k); // row-major
-        double* w = val.data() + 5 * kSlice * slot + l;
-        w[0] = m[0]; // a00, a10, a01, a11, a22, each kSlice lanes apart
+        double* w = val.data() + 4 * kSlice * slot + l;
+        w[0] = m[0]; // a00, a10, a01, a11, each kSlice lanes apart
         w[kSlice] = m[3];
         w[2 * kSlice] = m[1];
         w[3 * kSlice] = m[4];
-        w[4 * kSlice] = m[8];
+        val22[kSlice * slot + l] = m[8];
       }
     }
   start_ = std::move(sstart);
   col_ = std::move(col);
   val_ = std::move(val);
+  val22_ = std::move(val22);
 }
 
 void BlockMatrix::shareRepeatedRows() {
@@ -277,20 +278,21 @@ double plainRowsScalar(const int* start, const int* col, const double* val, cons
 /// infinite x_i the padding's 0 x_i makes row i NaN). The lanes of a slice are
 /// its rows; rows of a slice outside [i0, i1) are computed, not stored.
 /// @return x.y on [i0, i1), summed in node order.
-double slicedRows(const int* sstart, const int* col, const double* val, const double* x, double* y,
-                  std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+double slicedRows(const int* sstart, const int* col, const double* val, const double* val22,
+                  const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
   double dot = 0;
   for (int q = i0 / kSlice; kSlice * q < i1; ++q) {
     double y0[kSlice] = {}, y1[kSlice] = {}, y2[kSlice] = {};
     for (int k = sstart[q]; k < sstart[q + 1]; ++k) {
       const int* c = col + kSlice * static_cast<std::size_t>(k);
-      const double* m = val + 5 * kSlice * static_cast<std::size_t>(k);
+      const double* m = val + 4 * kSlice * static_cast<std::size_t>(k);
+      const double* m22 = val22 + kSlice * static_cast<std::size_t>(k);
       for (int l = 0; l < kSlice; ++l) {
         const double* xj = x + s * c[l];
         const double a = xj[0], b = xj[o];
         y0[l] += m[l] * a + m[2 * kSlice + l] * b;
         y1[l] += m[kSlice + l] * a + m[3 * kSlice + l] * b;
-        y2[l] += m[4 * kSlice + l] * xj[2 * o];
+        y2[l] += m22[l] * xj[2 * o];
       }
     }
     const int r0 = std::max(i0, kSlice * q), r1 = std::min(i1, kSlice * (q + 1));
@@ -298,6 +300,45 @@ double slicedRows(const int* sstart, const int* col, const double* val, const do
       const int l = i - kSlice * q;
       dot += storeRow(x, y, s, o, i, y0[l], y1[l], y2[l]);
     }
+  }
+  return dot;
+}
+
+/// Stores the normal component @p y2 of row @p i in @p y (with @p StoreZeros
+/// its +0 in-plane components too) and @return its part of x.y: x_2 y_2,
+/// the number storeRow() gives when x_0, x_1 are zeros and y_0 = y_1 = +0
+/// (x_0 y_0 + x_1 y_1 is a zero, which adds nothing to a non-zero x_2 y_2;
+/// a sum that starts at +0 never becomes -0, so adding a zero of either
+/// sign leaves it as it is).
+template <bool StoreZeros>
+inline double storeNormal(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i,
+                          double y2) {
+  double* yi = y + s * i;
+  if (StoreZeros)
+    yi[0] = yi[o] = 0.0;
+  yi[2 * o] = y2;
+  return x[s * i + 2 * o] * y2;
+}
+
+/// The normal component of slicedRows() (A(2,2) x_2, the same operations in
+/// the same order), for an x whose in-plane components are zero; with
+/// @p StoreZeros the +0 in-plane components of y are stored too.
+template <bool StoreZeros>
+double slicedNormalRows(const int* sstart, const int* col, const double* val22, const double* x,
+                        double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+  double dot = 0;
+  const double* x2 = x + 2 * o;
+  for (int q = i0 / kSlice; kSlice * q < i1; ++q) {
+    double y2[kSlice] = {};
+    for (int k = sstart[q]; k < sstart[q + 1]; ++k) {
+      const int* c = col + kSlice * static_cast<std::size_t>(k);
+      const double* m22 = val22 + kSlice * static_cast<std::size_t>(k);
+      for (int l = 0; l < kSlice; ++l)
+        y2[l] += m22[l] * x2[s * c[l]];
+    }
+    const int r0 = std::max(i0, kSlice * q), r1 = std::min(i1, kSlice * (q + 1));
+    for (int i = r0; i < r1; ++i)
+      dot += storeNormal<StoreZeros>(x, y, s, o, i, y2[i - kSlice * q]);
   }
   return dot;
 }
@@ -316,16 +357,16 @@ __attribute__((target("avx2"), always_inline)) inline __m256d gather(const doubl
 /// the same multiplications and additions in the same order per row (no
 /// FMA: no contraction), so the same bits.
 __attribute__((target("avx2"))) double slicedRowsAvx2(const int* sstart, const int* col,
-                                                      const double* val, const double* x, double* y,
-                                                      std::ptrdiff_t s, std::ptrdiff_t o, int i0,
-                                                      int i1) {
+                                                      const double* val, const double* val22,
+                                                      const double* x, double* y, std::ptrdiff_t s,
+                                                      std::ptrdiff_t o, int i0, int i1) {
   double dot = 0;
   const __m128i stride = _mm_set1_epi32(static_cast<int>(s));
 
   for (int q = i0 / kSlice; kSlice * q < i1; ++q) {
     __m256d y0 = _mm256_setzero_pd(), y1 = y0, y2 = y0;
     for (int k = sstart[q]; k < sstart[q + 1]; ++k) {
-      const double* m = val + 5 * kSlice * static_cast<std::size_t>(k);
+      const double* m = val + 4 * kSlice * static_cast<std::size_t>(k);
       const __m128i j = _mm_mullo_epi32(
           _mm_loadu_si128(reinterpret_cast<const __m128i*>(col + kSlice * std::size_t(k))), stride);
       const __m256d a = gather(x, j), b = gather(x + o, j);
@@ -333,7 +374,8 @@ __attribute__((target("avx2"))) double slicedRowsAvx2(const int* sstart, const i
                                            _mm256_mul_pd(_mm256_loadu_pd(m + 8), b)));
       y1 = _mm256_add_pd(y1, _mm256_add_pd(_mm256_mul_pd(_mm256_loadu_pd(m + 4), a),
                                            _mm256_mul_pd(_mm256_loadu_pd(m + 12), b)));
-      y2 = _mm256_add_pd(y2, _mm256_mul_pd(_mm256_loadu_pd(m + 16), gather(x + 2 * o, j)));
+      y2 = _mm256_add_pd(y2, _mm256_mul_pd(_mm256_loadu_pd(val22 + kSlice * std::size_t(k)),
+                                           gather(x + 2 * o, j)));
     }
     alignas(32) double v0[kSlice], v1[kSlice], v2[kSlice];
     _mm256_store_pd(v0, y0);
@@ -344,6 +386,32 @@ __attribute__((target("avx2"))) double slicedRowsAvx2(const int* sstart, const i
       const int l = i - kSlice * q;
       dot += storeRow(x, y, s, o, i, v0[l], v1[l], v2[l]);
     }
+  }
+  return dot;
+}
+
+/// slicedNormalRows() with a slice's four rows in one AVX2 register: the
+/// same bits.
+template <bool StoreZeros>
+__attribute__((target("avx2"))) double
+slicedNormalRowsAvx2(const int* sstart, const int* col, const double* val22, const double* x,
+                     double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+  double dot = 0;
+  const __m128i stride = _mm_set1_epi32(static_cast<int>(s));
+  const double* x2 = x + 2 * o;
+  for (int q = i0 / kSlice; kSlice * q < i1; ++q) {
+    __m256d y2 = _mm256_setzero_pd();
+    for (int k = sstart[q]; k < sstart[q + 1]; ++k) {
+      const __m128i j = _mm_mullo_epi32(
+          _mm_loadu_si128(reinterpret_cast<const __m128i*>(col + kSlice * std::size_t(k))), stride);
+      y2 = _mm256_add_pd(
+          y2, _mm256_mul_pd(_mm256_loadu_pd(val22 + kSlice * std::size_t(k)), gather(x2, j)));
+    }
+    alignas(32) double v2[kSlice];
+    _mm256_store_pd(v2, y2);
+    const int r0 = std::max(i0, kSlice * q), r1 = std::min(i1, kSlice * (q + 1));
+    for (int i = r0; i < r1; ++i)
+      dot += storeNormal<StoreZeros>(x, y, s, o, i, v2[i - kSlice * q]);
   }
   return dot;
 }
@@ -379,6 +447,8 @@ __attribute__((target("avx"))) double plainRowsAvx(const int* start, const int* 
 
 /// The kernel BlockMatrix::useKernel chose.
 BlockKernel g_kernel = BlockKernel::Fastest;
+/// What BlockMatrix::usePlaneSkipping chose.
+PlaneSkipping g_skipping = PlaneSkipping::Automatic;
 
 /// Below this many node rows threads cost more than they save.
 constexpr int kParallelNodes = 10000;
@@ -397,6 +467,13 @@ void fromPlanar(const double* p, double* a, int n, int i0, int i1) {
       a[3 * static_cast<std::ptrdiff_t>(i) + c] = p[static_cast<std::ptrdiff_t>(c) * n + i];
 }
 
+bool inPlaneZero(const double* v, std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1) {
+  bool zero = true;
+  for (int i = i0; i < i1 && zero; ++i)
+    zero = v[s * i] == 0 && v[s * i + o] == 0;
+  return zero;
+}
+
 void BlockMatrix::multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   if (kind_.empty())
     product<false>(x, y);
@@ -408,8 +485,13 @@ double BlockMatrix::multiplyDot(const Eigen::VectorXd& x, Eigen::VectorXd& y) co
   return kind_.empty() ? product<true>(x, y) : productViaPlanar<true>(x, y);
 }
 
-double BlockMatrix::multiplyPlanar(const double* x, double* y, int begin, int end) const {
+double BlockMatrix::multiplyPlanar(const double* x, double* y, int begin, int end,
+                                   BlockPlanes planes) const {
   const int n = n_;
+  if (planes == BlockPlanes::Normal) {
+    LAMINA_ASSERT(split_); // the normal plane alone needs split blocks
+    return normalRows(x, y, 1, n, begin, end, false);
+  }
   if (!kind_.empty()) {
     double dot = 0;
     forEachRun(begin, end, [&](int b, int e, int row) {
@@ -426,15 +508,25 @@ void BlockMatrix::useKernel(BlockKernel kernel) {
   g_kernel = kernel;
 }
 
+void BlockMatrix::usePlaneSkipping(PlaneSkipping skipping) {
+  g_skipping = skipping;
+}
+
+bool BlockMatrix::skipsZeroPlanes() {
+  return g_skipping == PlaneSkipping::Automatic;
+}
+
 double BlockMatrix::plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o,
                               int begin, int end) const {
   if (split_) {
 #ifdef LAMINA_AVX2_SLICES
     static const bool avx2 = __builtin_cpu_supports("avx2");
     if (avx2 && g_kernel == BlockKernel::Fastest)
-      return slicedRowsAvx2(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
+      return slicedRowsAvx2(start_.data(), col_.data(), val_.data(), val22_.data(), x, y, s, o,
+                            begin, end);
 #endif
-    return slicedRows(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
+    return slicedRows(start_.data(), col_.data(), val_.data(), val22_.data(), x, y, s, o, begin,
+                      end);
   }
 #ifdef LAMINA_AVX_BLOCKS
   static const bool avx = __builtin_cpu_supports("avx");
@@ -442,6 +534,20 @@ double BlockMatrix::plainRows(const double* x, double* y, std::ptrdiff_t s, std:
     return plainRowsAvx(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
 #endif
   return plainRowsScalar(start_.data(), col_.data(), val_.data(), x, y, s, o, begin, end);
+}
+
+double BlockMatrix::normalRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o,
+                               int begin, int end, bool store_zeros) const {
+  const int *ss = start_.data(), *col = col_.data();
+  const double* a22 = val22_.data();
+#ifdef LAMINA_AVX2_SLICES
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2 && g_kernel == BlockKernel::Fastest)
+    return store_zeros ? slicedNormalRowsAvx2<true>(ss, col, a22, x, y, s, o, begin, end)
+                       : slicedNormalRowsAvx2<false>(ss, col, a22, x, y, s, o, begin, end);
+#endif
+  return store_zeros ? slicedNormalRows<true>(ss, col, a22, x, y, s, o, begin, end)
+                     : slicedNormalRows<false>(ss, col, a22, x, y, s, o, begin, end);
 }
 
 template <bool Dot>
@@ -467,13 +573,30 @@ double BlockMatrix::productViaPlanar(const Eigen::VectorXd& x, Eigen::VectorXd& 
 template <bool Dot>
 double BlockMatrix::product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
   // Plain storage, interleaved vectors: each thread its contiguous rows.
+  // Split blocks and x without in-plane part (every thread checks its rows):
+  // the normal plane alone, the in-plane components of y stored as +0.
   const int n = nodes();
   y.resize(3 * n);
   double dot = 0;
+  const bool may_skip = split_ && skipsZeroPlanes();
+  int inplane = 0; // threads that found an in-plane component not zero
 #pragma omp parallel reduction(+ : dot) if (n > kParallelNodes)
   {
     const auto [b, e] = core::threadRange(n);
-    const double d = plainRows(x.data(), y.data(), 3, 1, b, e);
+    bool normal = false;
+    if (may_skip) {
+      if (!inPlaneZero(x.data(), 3, 1, b, e)) {
+#pragma omp atomic
+        ++inplane;
+      }
+#pragma omp barrier
+      int found;
+#pragma omp atomic read
+      found = inplane;
+      normal = found == 0;
+    }
+    const double d = normal ? normalRows(x.data(), y.data(), 3, 1, b, e, true)
+                            : plainRows(x.data(), y.data(), 3, 1, b, e);
     if (Dot)
       dot += d;
   }
@@ -485,9 +608,10 @@ Eigen::Matrix3d BlockMatrix::diagonalBlock(int i) const {
     const int q = i / kSlice, l = i % kSlice;
     for (int k = start_[q]; k < start_[q + 1]; ++k)
       if (col_[kSlice * static_cast<std::size_t>(k) + l] == i) {
-        const double* m = val_.data() + 5 * kSlice * static_cast<std::size_t>(k) + l;
+        const double* m = val_.data() + 4 * kSlice * static_cast<std::size_t>(k) + l;
         Eigen::Matrix3d d;
-        d << m[0], m[2 * kSlice], 0, m[kSlice], m[3 * kSlice], 0, 0, 0, m[4 * kSlice];
+        d << m[0], m[2 * kSlice], 0, m[kSlice], m[3 * kSlice], 0, 0, 0,
+            val22_[kSlice * static_cast<std::size_t>(k) + l];
         return d;
       }
     return Eigen::Matrix3d::Zero();

@@ -33,7 +33,18 @@
 /// gathered: each row's sum keeps its order, so the same bits as row by row
 /// (for a finite x: a padding block adds 0 x_i, which turns an infinite x_i
 /// into NaN in row i, non-finite either way), without the branch that ends
-/// each row of a few blocks.
+/// each row of a few blocks. A(2,2) is stored apart from the in-plane
+/// values, so that a product of the normal component alone streams it and
+/// the columns only: 12 of the 44 bytes per block.
+///
+/// Normal plane alone: with split blocks, a vector whose in-plane
+/// components are all exactly zero has a product whose in-plane components
+/// are +0 (each row's sum starts at +0 and adds only zeros) and whose
+/// normal component is A(2,2) x_2. The transverse motion of the linear
+/// membrane under transverse load (a strike, a pressure) is such a vector
+/// at every step. multiply() and multiplyDot() find it (one pass over x)
+/// and compute the normal plane alone; the CG asks for it with
+/// BlockPlanes::Normal. The results are the bits of the full product.
 ///
 /// Two vector layouts. Interleaved (the solver's): dof 3 i + c. Planar (the
 /// CG iteration's): component c of node i at c n + i, three contiguous
@@ -81,6 +92,24 @@ enum class BlockKernel {
            ///< (same bits)
 };
 
+/// Which planes of a planar product are computed.
+enum class BlockPlanes {
+  All,   ///< the three components
+  Normal ///< component 2 alone (split blocks; the caller guarantees that
+         ///< components 0 and 1 of x are zero and holds +0 in those of y)
+};
+
+/// Whether products may compute the normal plane alone when the in-plane
+/// components are zero (a switch for the tests that compare the two).
+enum class PlaneSkipping {
+  Automatic, ///< when the blocks are split and x's in-plane part is zero (the default)
+  Never      ///< always the three components
+};
+
+/// @return true when components 0 and 1 of nodes [@p i0, @p i1) of @p v are
+/// exactly zero (either sign; NaN is not), component c of node i at s i + c o.
+bool inPlaneZero(const double* v, std::ptrdiff_t s, std::ptrdiff_t o, int i0, int i1);
+
 /// 3x3-block compressed sparse rows.
 class BlockMatrix {
 public:
@@ -88,6 +117,11 @@ public:
   /// (tests compare the two on a CPU that has AVX and AVX2; not thread-safe
   /// against products running at the same time).
   static void useKernel(BlockKernel kernel);
+  /// Chooses whether products of every BlockMatrix of the process may skip
+  /// zero in-plane components (same thread-safety as useKernel()).
+  static void usePlaneSkipping(PlaneSkipping skipping);
+  /// @return true when products may compute the normal plane alone
+  static bool skipsZeroPlanes();
   BlockMatrix() = default;
   /// Copies @p A (3n x 3n, full 3x3 blocks) in the storage @p storage.
   explicit BlockMatrix(const SparseMatrix& A, BlockStorage storage = BlockStorage::Automatic);
@@ -97,8 +131,12 @@ public:
   double multiplyDot(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   /// Planar y = A x on the node rows [@p begin, @p end) (x whole, y written
   /// only on those rows; no threads: the caller splits the rows).
+  /// BlockPlanes::Normal (split blocks only) computes and writes component 2
+  /// alone: the caller guarantees that components 0 and 1 of x are zero
+  /// (then those of A x are +0, which y must already hold).
   /// @return the part of x.y from those rows.
-  double multiplyPlanar(const double* x, double* y, int begin, int end) const;
+  double multiplyPlanar(const double* x, double* y, int begin, int end,
+                        BlockPlanes planes = BlockPlanes::All) const;
   /// @return the diagonal 3x3 block of node @p i
   Eigen::Matrix3d diagonalBlock(int i) const;
   /// @return number of node rows
@@ -145,6 +183,11 @@ private:
   /// the scalar loops either way).
   double plainRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int begin,
                    int end) const;
+  /// The normal component of plainRows() for split blocks and an x whose
+  /// in-plane components are zero; with @p store_zeros the +0 in-plane
+  /// components of y are stored too (interleaved vectors).
+  double normalRows(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int begin,
+                    int end, bool store_zeros) const;
   template <bool Dot>
   double product(const Eigen::VectorXd& x, Eigen::VectorXd& y) const;
   template <bool Dot>
@@ -159,8 +202,9 @@ private:
   std::vector<int> col_;                // block column (node) of each block; split: per
                                         // slot, one per lane
   std::vector<double> val_;             // 9 values per block, column-major, then one pad;
-                                        // split: per slot a00, a10, a01, a11, a22,
-                                        // each one per lane
+                                        // split: per slot a00, a10, a01, a11, each one
+                                        // per lane
+  std::vector<double> val22_;           // split: per slot a22, one per lane
   bool split_ = false;                  // plain storage in split blocks
   mutable std::vector<double> xs_, ys_; // planar scratch of multiply() (shared rows)
 };

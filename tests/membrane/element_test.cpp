@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <random>
 
 using namespace lamina::membrane;
@@ -235,6 +237,14 @@ TEST(MembraneElement, MassMatrixCarriesTheMembraneMass) {
   }
 }
 
+namespace {
+/// The assembly of a monoclinic law (no in-plane/normal coupling: split
+/// blocks) on a perturbed 30 x 30 grid, perturbation seed @p seed.
+GlobalMatrices splitAssembly(unsigned seed) {
+  return assemble(perturbedGrid(30, 0.006, seed), {section(monoclinicD())}, false);
+}
+} // namespace
+
 TEST(MembraneElement, BlockProductsEqualTheAssembledMatrix) {
   // Shared rows (uniform structured mesh) and plain blocks (irregular mesh)
   // both reproduce K x; shared rows differ from their own by < 1e-14 of the
@@ -276,8 +286,7 @@ TEST(MembraneElement, BlockProductsEqualTheAssembledMatrix) {
 // block after block (the zeros add nothing), with either kernel and in both
 // vector layouts, and the diagonal blocks must be those of the matrix.
 TEST(BlockMatrix, SplitBlocksGiveTheBitsOfTheFullBlocks) {
-  const Mesh irregular = perturbedGrid(30, 0.006, 13);
-  const auto g = assemble(irregular, {section(monoclinicD())}, false);
+  const auto g = splitAssembly(13);
   const BlockMatrix B(g.K), full(g.K, BlockStorage::Plain);
   ASSERT_TRUE(B.splitBlocks());
   ASSERT_FALSE(full.splitBlocks());
@@ -307,8 +316,7 @@ TEST(BlockMatrix, SplitBlocksGiveTheBitsOfTheFullBlocks) {
 // their sum equals the whole one to round-off: 1e-13 of sum |x_i y_i| over
 // about 3000 terms, each rounding ~1e-16 of that sum).
 TEST(BlockMatrix, SplitSlicesGiveTheRowsOfAnyPart) {
-  const Mesh irregular = perturbedGrid(30, 0.006, 17);
-  const auto g = assemble(irregular, {section(monoclinicD())}, false);
+  const auto g = splitAssembly(17);
   const BlockMatrix B(g.K);
   ASSERT_TRUE(B.splitBlocks());
   const int n = B.nodes();
@@ -338,6 +346,66 @@ TEST(BlockMatrix, SplitSlicesGiveTheRowsOfAnyPart) {
       B.multiplyPlanar(x.data(), y.data(), b, e);
       expectPart(y, b, e);
     }
+  }
+  BlockMatrix::useKernel(BlockKernel::Fastest);
+}
+
+// With split blocks, a vector without in-plane part has a product whose
+// in-plane components are +0 and whose normal one is A(2,2) x_2; the
+// products that compute the normal plane alone must give the full
+// product's bits (sign of zero included) and its x.y, with either kernel,
+// in both layouts and on parts that cut a slice; a vector with one in-plane
+// component not zero must take the full product.
+TEST(BlockMatrix, NormalPlaneAloneGivesTheBitsOfTheFullProduct) {
+  const auto g = splitAssembly(19);
+  const BlockMatrix B(g.K);
+  ASSERT_TRUE(B.splitBlocks());
+  const int n = B.nodes();
+  Eigen::VectorXd x = Eigen::VectorXd::Random(3 * n); // interleaved
+  for (int i = 0; i < n; ++i) {
+    x[3 * i] = i % 2 ? 0.0 : -0.0; // zeros of both signs
+    x[3 * i + 1] = i % 3 ? -0.0 : 0.0;
+  }
+  Eigen::VectorXd xp(3 * n);
+  toPlanar(x.data(), xp.data(), n, 0, n);
+  auto sameBits = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+    return a.size() == b.size() &&
+           std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<size_t>(a.size())) == 0;
+  };
+  for (const BlockKernel kernel : {BlockKernel::Fastest, BlockKernel::Scalar}) {
+    BlockMatrix::useKernel(kernel);
+    // Interleaved: the product finds the zero in-plane part by itself.
+    Eigen::VectorXd full, normal;
+    BlockMatrix::usePlaneSkipping(PlaneSkipping::Never);
+    const double dot_full = B.multiplyDot(x, full);
+    BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic);
+    const double dot_normal = B.multiplyDot(x, normal);
+    EXPECT_TRUE(sameBits(full, normal));
+    EXPECT_EQ(dot_full, dot_normal);
+    for (int i = 0; i < n; ++i) // what the normal plane alone relies on
+      ASSERT_TRUE(full[3 * i] == 0 && !std::signbit(full[3 * i]) && !std::signbit(full[3 * i + 1]))
+          << "node " << i;
+    // Planar, on two parts that cut a slice: y's in-plane planes hold +0.
+    Eigen::VectorXd yf(3 * n), yn = Eigen::VectorXd::Zero(3 * n);
+    const double pdot = B.multiplyPlanar(xp.data(), yf.data(), 0, n);
+    const int cut = n / 2 + 1;
+    const double d1 = B.multiplyPlanar(xp.data(), yn.data(), 0, cut, BlockPlanes::Normal);
+    const double d2 = B.multiplyPlanar(xp.data(), yn.data(), cut, n, BlockPlanes::Normal);
+    EXPECT_TRUE(sameBits(yf, yn));
+    // Each part sums its rows in node order, as the whole does: equal to
+    // round-off (1e-13 of sum |x_i y_i| over about 3000 terms), and the
+    // whole range gives the whole product's sum exactly.
+    EXPECT_NEAR(d1 + d2, pdot, 1e-13 * xp.cwiseProduct(yf).cwiseAbs().sum());
+    EXPECT_EQ(B.multiplyPlanar(xp.data(), yn.data(), 0, n, BlockPlanes::Normal), pdot);
+    // One in-plane component not zero: the full product.
+    Eigen::VectorXd x1 = x, y1, y1full;
+    x1[3 * (n / 3) + 1] = 1e-300;
+    B.multiplyDot(x1, y1);
+    BlockMatrix::usePlaneSkipping(PlaneSkipping::Never);
+    B.multiplyDot(x1, y1full);
+    BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic);
+    EXPECT_TRUE(sameBits(y1, y1full));
+    EXPECT_NE(y1[3 * (n / 3) + 1], 0.0); // the diagonal block times 1e-300
   }
   BlockMatrix::useKernel(BlockKernel::Fastest);
 }
