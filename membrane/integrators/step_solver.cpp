@@ -181,7 +181,7 @@ StepSolver::StepSolver(const SparseMatrix& A, LinearSolverKind kind, double tole
   for (Eigen::VectorXd* v : {&xp_, &rp_, &pp_, &qp_})
     v->resize(n);
   // The normal plane alone (cgThread) needs P r = 0 for r = 0 in the plane:
-  // finite in-plane blocks.
+  // finite in-plane blocks (every inverse finite, A(2,2)'s too).
   normal_plane_ = split && std::all_of(block_inverse_.begin(), block_inverse_.end(),
                                        [](double v) { return std::isfinite(v); });
 }
@@ -279,6 +279,7 @@ struct StepSolver::CgRun {
   double final_rr = 0;                   ///< r.r at the end
   int iterations = 0;                    ///< iterations done
   BlockPlanes planes = BlockPlanes::All; ///< the planes the products computed
+  bool may_skip = false; ///< the normal plane alone allowed (read once, for every thread)
 };
 
 /// One thread's share of a CG solve: its nodes [i0, i1) and its partial sums.
@@ -323,6 +324,7 @@ void StepSolver::cg(const Eigen::VectorXd& b, Eigen::VectorXd& x, int& iteration
                                              : Blocks::PerNode;
   CgRun run{n / 3, tolerance_ * bnorm, blocks,
             std::vector<Partial>(parallel ? omp_get_max_threads() : 1)};
+  run.may_skip = normal_plane_ && BlockMatrix::skipsZeroPlanes();
   const double* r0 = have_residual ? r_.data() : b.data();
 #pragma omp parallel if (parallel)
   {
@@ -347,7 +349,7 @@ void StepSolver::cgThread(CgThread& t, const double* r0, bool have_residual, Eig
   double* qp = qp_.data();
   toPlanar(x.data(), xp, nn, t.i0, t.i1);
   toPlanar(r0, rp, nn, t.i0, t.i1);
-  const bool may_skip = normal_plane_ && BlockMatrix::skipsZeroPlanes();
+  const bool may_skip = t.run.may_skip;
   if (may_skip)
     t.run.partial[t.tid].inplane =
         !inPlaneZero(xp, 1, nn, t.i0, t.i1) || !inPlaneZero(rp, 1, nn, t.i0, t.i1);

@@ -9,8 +9,9 @@
 /// ||b - A x|| <= tolerance ||b||. The iteration runs on planar copies of
 /// its vectors (BlockMatrix) in one OpenMP region for matrices above 30,000
 /// rows. When A has split blocks (no coupling of the in-plane and normal
-/// components) and the in-plane parts of b and the start are zero (the
-/// linear membrane under transverse load), the in-plane parts stay zero
+/// components) and the in-plane parts of the start and of its residual
+/// (b, or the projection's) are zero (the linear membrane under transverse
+/// load), the in-plane parts stay zero
 /// through the iteration and its products compute the normal plane alone
 /// (BlockPlanes::Normal): the same bits as the full products. "cholesky": a
 /// sparse Cholesky factorization (CHOLMOD supernodal when built with it,

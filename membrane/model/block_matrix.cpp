@@ -82,7 +82,8 @@ void BlockMatrix::storePlainBlocks(bool may_split) {
 
 void BlockMatrix::storeSlices() {
   // Slice q holds rows [kSlice q, kSlice q + kSlice); its slot k holds block k
-  // of each of those rows (column and five values per lane), and a row shorter
+  // of each of those rows (per lane its column, its four in-plane values in
+  // val_ and A(2,2) in val22_), and a row shorter
   // than the slice's longest ends in zero blocks on its own column.
   const int n = n_;
   // The AVX2 kernel gathers at s j + c o < 3 n as 32-bit indices.
@@ -305,11 +306,13 @@ double slicedRows(const int* sstart, const int* col, const double* val, const do
 }
 
 /// Stores the normal component @p y2 of row @p i in @p y (with @p StoreZeros
-/// its +0 in-plane components too) and @return its part of x.y: x_2 y_2,
-/// the number storeRow() gives when x_0, x_1 are zeros and y_0 = y_1 = +0
+/// its +0 in-plane components too) and @return its part of x.y: the number
+/// storeRow() gives when x_0, x_1 are zeros and y_0 = y_1 = +0
 /// (x_0 y_0 + x_1 y_1 is a zero, which adds nothing to a non-zero x_2 y_2;
 /// a sum that starts at +0 never becomes -0, so adding a zero of either
-/// sign leaves it as it is).
+/// sign leaves it as it is). Written 0 + x_2 y_2, so that a compiler that
+/// fuses multiply-adds fuses it as it fuses storeRow()'s sum (into the
+/// term, not into the caller's running sum).
 template <bool StoreZeros>
 inline double storeNormal(const double* x, double* y, std::ptrdiff_t s, std::ptrdiff_t o, int i,
                           double y2) {
@@ -317,7 +320,7 @@ inline double storeNormal(const double* x, double* y, std::ptrdiff_t s, std::ptr
   if (StoreZeros)
     yi[0] = yi[o] = 0.0;
   yi[2 * o] = y2;
-  return x[s * i + 2 * o] * y2;
+  return 0.0 + x[s * i + 2 * o] * y2;
 }
 
 /// The normal component of slicedRows() (A(2,2) x_2, the same operations in

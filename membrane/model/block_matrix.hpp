@@ -37,9 +37,9 @@
 /// values, so that a product of the normal component alone streams it and
 /// the columns only: 12 of the 44 bytes per block.
 ///
-/// Normal plane alone: with split blocks, a vector whose in-plane
-/// components are all exactly zero has a product whose in-plane components
-/// are +0 (each row's sum starts at +0 and adds only zeros) and whose
+/// Normal plane alone: with split blocks of finite entries, a vector whose
+/// in-plane components are all exactly zero has a product whose in-plane
+/// components are +0 (each row's sum starts at +0 and adds only zeros) and whose
 /// normal component is A(2,2) x_2. The transverse motion of the linear
 /// membrane under transverse load (a strike, a pressure) is such a vector
 /// at every step. multiply() and multiplyDot() find it (one pass over x)
@@ -175,7 +175,8 @@ private:
   /// decouples, else column-major 3x3 blocks.
   void storePlainBlocks(bool may_split);
   /// Split blocks in slices of consecutive rows (the lanes of the product):
-  /// replaces start_, col_ and val_ (row-major 3x3 blocks) by the slices.
+  /// replaces start_, col_ and val_ (row-major 3x3 blocks) by the slices,
+  /// A(2,2) in val22_.
   void storeSlices();
   /// y = A x on the rows [@p begin, @p end) of plain storage, component c
   /// of node j at s j + c o in x and y; @return x.y there (3x3 blocks on

@@ -1,5 +1,6 @@
 // Element and assembly: patch test, rigid motions, isotropic decoupling.
 #include "helpers.hpp"
+#include "membrane/integrators/step_solver.hpp"
 #include "membrane/model/assembly.hpp"
 #include "membrane/model/block_matrix.hpp"
 #include "membrane/model/mesh.hpp"
@@ -385,11 +386,16 @@ TEST(BlockMatrix, NormalPlaneAloneGivesTheBitsOfTheFullProduct) {
     for (int i = 0; i < n; ++i) // what the normal plane alone relies on
       ASSERT_TRUE(full[3 * i] == 0 && !std::signbit(full[3 * i]) && !std::signbit(full[3 * i + 1]))
           << "node " << i;
-    // Planar, on two parts that cut a slice: y's in-plane planes hold +0.
+    // Planar, on two parts that cut a slice: y's in-plane planes hold +0;
+    // the second part's rows are untouched by the first (threads share y).
     Eigen::VectorXd yf(3 * n), yn = Eigen::VectorXd::Zero(3 * n);
     const double pdot = B.multiplyPlanar(xp.data(), yf.data(), 0, n);
     const int cut = n / 2 + 1;
+    constexpr double kUntouched = 12345.0;
+    yn.tail(n - cut).setConstant(kUntouched); // plane 2 of rows [cut, n)
     const double d1 = B.multiplyPlanar(xp.data(), yn.data(), 0, cut, BlockPlanes::Normal);
+    for (int i = cut; i < n; ++i)
+      ASSERT_EQ(yn[2 * n + i], kUntouched) << "row " << i;
     const double d2 = B.multiplyPlanar(xp.data(), yn.data(), cut, n, BlockPlanes::Normal);
     EXPECT_TRUE(sameBits(yf, yn));
     // Each part sums its rows in node order, as the whole does: equal to
@@ -408,6 +414,47 @@ TEST(BlockMatrix, NormalPlaneAloneGivesTheBitsOfTheFullProduct) {
     EXPECT_NE(y1[3 * (n / 3) + 1], 0.0); // the diagonal block times 1e-300
   }
   BlockMatrix::useKernel(BlockKernel::Fastest);
+}
+
+// The CG on threads (above 30,000 rows; the product above 10,000 nodes):
+// every thread checks its rows of x and r, all take the normal plane alone
+// only when no thread found an in-plane part, and their products cut the
+// slices of four rows at the threads' bounds. A = M + c K of a perturbed
+// 110 x 110 grid (12,321 nodes, split blocks, no shared rows), b without
+// in-plane part: the solution must be the full products' bit for bit, with
+// the same iterations; one in-plane component in the last thread's rows
+// must send every thread to the full products.
+TEST(StepSolver, NormalPlaneAloneOnThreadsGivesTheBitsOfTheFullSolve) {
+  const auto g = assemble(perturbedGrid(110, 0.002, 23), {section(monoclinicD())}, false);
+  const SparseMatrix A = g.M + 1e-12 * g.K;
+  ASSERT_TRUE(BlockMatrix(A).splitBlocks());
+  ASSERT_EQ(BlockMatrix(A).sharedRows(), 0);
+  const int n = static_cast<int>(A.rows());
+  Eigen::VectorXd b = Eigen::VectorXd::Random(n);
+  for (int i = 0; i < n; i += 3)
+    b[i] = b[i + 1] = 0;
+  struct Restore { // the process-wide switch back to its default, whatever happens
+    ~Restore() { BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic); }
+  } restore;
+  Eigen::VectorXd x[2];
+  int iterations[2];
+  for (int k = 0; k < 2; ++k) {
+    BlockMatrix::usePlaneSkipping(k == 0 ? PlaneSkipping::Automatic : PlaneSkipping::Never);
+    StepSolver solver(A, LinearSolverKind::Cg, 1e-10, 1000);
+    x[k] = Eigen::VectorXd::Zero(n);
+    iterations[k] = solver.solve(b, x[k]);
+    EXPECT_EQ(solver.lastPlanes(), k == 0 ? BlockPlanes::Normal : BlockPlanes::All);
+  }
+  BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic);
+  EXPECT_GT(iterations[0], 2);
+  EXPECT_EQ(iterations[0], iterations[1]);
+  EXPECT_EQ(std::memcmp(x[0].data(), x[1].data(), sizeof(double) * static_cast<size_t>(n)), 0);
+  b[n - 3] = 1.0; // node n/3 - 1: the last thread's rows
+  StepSolver solver(A, LinearSolverKind::Cg, 1e-10, 1000);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+  solver.solve(b, y);
+  EXPECT_EQ(solver.lastPlanes(), BlockPlanes::All);
+  EXPECT_NE(y[n - 3], 0.0);
 }
 
 // The plain-block product has two kernels, AVX and the scalar loop a CPU
