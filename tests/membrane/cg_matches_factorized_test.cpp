@@ -105,23 +105,11 @@ const std::string kIsotropicCircle =
     "density = 1000.0\nthickness = 1.0e-3\n[time]\ndt = 2.0e-7\n"
     "t_end = 1.0\n[[fixed]]\nnodes = \"edge\"\n[solver]\ntype = \"cg\"\n";
 
-/// Sets the process-wide plane skipping back to its default when it goes
-/// out of scope (a failed assertion or an exception included).
-struct SkippingRestored {
-  ~SkippingRestored() { BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic); }
-};
-
-/// True when @p a and @p b hold the same bits.
-bool sameBits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-  return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<size_t>(a.size())) == 0;
-}
-
 /// u and v after @p steps steps of @p text, products skipping zero planes
 /// as @p skipping says.
 std::pair<Eigen::VectorXd, Eigen::VectorXd> history(const std::string& text, int steps,
                                                     PlaneSkipping skipping) {
-  const SkippingRestored restore;
+  const test::SkippingRestored restore;
   BlockMatrix::usePlaneSkipping(skipping);
   Model m = test::modelFromText(text);
   Simulation sim(m);
@@ -143,33 +131,11 @@ TEST(MembraneCg, NormalPlaneAloneGivesTheBitsOfTheFullSolve) {
   Simulation sim(m);
   const SparseMatrix A = sim.M() + 1e-12 * sim.K();
   const int n = static_cast<int>(A.rows());
-  Eigen::VectorXd b = Eigen::VectorXd::Random(n);
-  for (int i = 0; i < n; i += 3)
-    b[i] = b[i + 1] = 0;
-  Eigen::VectorXd x[2];
-  int iterations[2];
-  const SkippingRestored restore;
-  for (int k = 0; k < 2; ++k) {
-    BlockMatrix::usePlaneSkipping(k == 0 ? PlaneSkipping::Automatic : PlaneSkipping::Never);
-    StepSolver solver(A, LinearSolverKind::Cg, 1e-10, 1000);
-    x[k] = Eigen::VectorXd::Zero(n);
-    iterations[k] = solver.solve(b, x[k]);
-    EXPECT_EQ(solver.lastPlanes(), k == 0 ? BlockPlanes::Normal : BlockPlanes::All);
-  }
-  BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic);
-  EXPECT_GT(iterations[0], 2); // the CG did iterate
-  EXPECT_EQ(iterations[0], iterations[1]);
-  EXPECT_TRUE(sameBits(x[0], x[1]));
+  const auto [x, b] = test::expectNormalPlaneSolve(A, Eigen::VectorXd::Random(n), 3 * (n / 6));
   // The solution itself (what the bits are of): the CG stops when its
   // recurrence residual is at most 1e-10 ||b||; the true residual differs
   // from it by round-off (about 1e-15 ||b|| here), far inside 2x.
-  EXPECT_LT((A * x[0] - b).norm(), 2e-10 * b.norm());
-  b[3 * (n / 6)] = 1.0; // an in-plane component
-  StepSolver solver(A, LinearSolverKind::Cg, 1e-10, 1000);
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
-  solver.solve(b, y);
-  EXPECT_EQ(solver.lastPlanes(), BlockPlanes::All);
-  EXPECT_NE(y[3 * (n / 6)], 0.0);
+  EXPECT_LT((A * x - b).norm(), 2e-10 * b.norm());
 }
 
 // The same through the Newmark steps: a transverse strike (normal plane
@@ -181,8 +147,8 @@ TEST(MembraneCg, NormalPlaneAloneGivesTheBitsOfTheFullHistories) {
                              "direction = " + direction + "\n";
     const auto [u, v] = history(text, 30, PlaneSkipping::Automatic);
     const auto [uf, vf] = history(text, 30, PlaneSkipping::Never);
-    EXPECT_TRUE(sameBits(u, uf)) << direction;
-    EXPECT_TRUE(sameBits(v, vf)) << direction;
+    EXPECT_TRUE(test::sameBits(u, uf)) << direction;
+    EXPECT_TRUE(test::sameBits(v, vf)) << direction;
     double inplane = 0; // transverse: exactly zero (the decoupled in-plane problem)
     for (Eigen::Index i = 0; i < u.size(); i += 3)
       inplane = std::max({inplane, std::abs(u[i]), std::abs(u[i + 1])});

@@ -369,10 +369,6 @@ TEST(BlockMatrix, NormalPlaneAloneGivesTheBitsOfTheFullProduct) {
   }
   Eigen::VectorXd xp(3 * n);
   toPlanar(x.data(), xp.data(), n, 0, n);
-  auto sameBits = [](const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
-    return a.size() == b.size() &&
-           std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<size_t>(a.size())) == 0;
-  };
   for (const BlockKernel kernel : {BlockKernel::Fastest, BlockKernel::Scalar}) {
     BlockMatrix::useKernel(kernel);
     // Interleaved: the product finds the zero in-plane part by itself.
@@ -381,7 +377,7 @@ TEST(BlockMatrix, NormalPlaneAloneGivesTheBitsOfTheFullProduct) {
     const double dot_full = B.multiplyDot(x, full);
     BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic);
     const double dot_normal = B.multiplyDot(x, normal);
-    EXPECT_TRUE(sameBits(full, normal));
+    EXPECT_TRUE(test::sameBits(full, normal));
     EXPECT_EQ(dot_full, dot_normal);
     for (int i = 0; i < n; ++i) // what the normal plane alone relies on
       ASSERT_TRUE(full[3 * i] == 0 && !std::signbit(full[3 * i]) && !std::signbit(full[3 * i + 1]))
@@ -397,7 +393,7 @@ TEST(BlockMatrix, NormalPlaneAloneGivesTheBitsOfTheFullProduct) {
     for (int i = cut; i < n; ++i)
       ASSERT_EQ(yn[2 * n + i], kUntouched) << "row " << i;
     const double d2 = B.multiplyPlanar(xp.data(), yn.data(), cut, n, BlockPlanes::Normal);
-    EXPECT_TRUE(sameBits(yf, yn));
+    EXPECT_TRUE(test::sameBits(yf, yn));
     // Each part sums its rows in node order, as the whole does: equal to
     // round-off (1e-13 of sum |x_i y_i| over about 3000 terms), and the
     // whole range gives the whole product's sum exactly.
@@ -410,7 +406,7 @@ TEST(BlockMatrix, NormalPlaneAloneGivesTheBitsOfTheFullProduct) {
     BlockMatrix::usePlaneSkipping(PlaneSkipping::Never);
     B.multiplyDot(x1, y1full);
     BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic);
-    EXPECT_TRUE(sameBits(y1, y1full));
+    EXPECT_TRUE(test::sameBits(y1, y1full));
     EXPECT_NE(y1[3 * (n / 3) + 1], 0.0); // the diagonal block times 1e-300
   }
   BlockMatrix::useKernel(BlockKernel::Fastest);
@@ -430,31 +426,8 @@ TEST(StepSolver, NormalPlaneAloneOnThreadsGivesTheBitsOfTheFullSolve) {
   ASSERT_TRUE(BlockMatrix(A).splitBlocks());
   ASSERT_EQ(BlockMatrix(A).sharedRows(), 0);
   const int n = static_cast<int>(A.rows());
-  Eigen::VectorXd b = Eigen::VectorXd::Random(n);
-  for (int i = 0; i < n; i += 3)
-    b[i] = b[i + 1] = 0;
-  struct Restore { // the process-wide switch back to its default, whatever happens
-    ~Restore() { BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic); }
-  } restore;
-  Eigen::VectorXd x[2];
-  int iterations[2];
-  for (int k = 0; k < 2; ++k) {
-    BlockMatrix::usePlaneSkipping(k == 0 ? PlaneSkipping::Automatic : PlaneSkipping::Never);
-    StepSolver solver(A, LinearSolverKind::Cg, 1e-10, 1000);
-    x[k] = Eigen::VectorXd::Zero(n);
-    iterations[k] = solver.solve(b, x[k]);
-    EXPECT_EQ(solver.lastPlanes(), k == 0 ? BlockPlanes::Normal : BlockPlanes::All);
-  }
-  BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic);
-  EXPECT_GT(iterations[0], 2);
-  EXPECT_EQ(iterations[0], iterations[1]);
-  EXPECT_EQ(std::memcmp(x[0].data(), x[1].data(), sizeof(double) * static_cast<size_t>(n)), 0);
-  b[n - 3] = 1.0; // node n/3 - 1: the last thread's rows
-  StepSolver solver(A, LinearSolverKind::Cg, 1e-10, 1000);
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
-  solver.solve(b, y);
-  EXPECT_EQ(solver.lastPlanes(), BlockPlanes::All);
-  EXPECT_NE(y[n - 3], 0.0);
+  // the in-plane component: node n/3 - 1, in the last thread's rows
+  test::expectNormalPlaneSolve(A, Eigen::VectorXd::Random(n), n - 3);
 }
 
 // The plain-block product has two kernels, AVX and the scalar loop a CPU

@@ -4,15 +4,19 @@
 #include "core/error.hpp"
 #include "core/format.hpp"
 #include "core/toml_reader.hpp"
+#include "membrane/integrators/step_solver.hpp"
 #include "membrane/io/case_file.hpp"
+#include "membrane/model/block_matrix.hpp"
 #include "membrane/simulation.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -176,6 +180,53 @@ struct BalanceTracker {
 /// Path of a file in the source tree.
 inline std::filesystem::path sourcePath(const std::string& rel) {
   return std::filesystem::path(LAMINA_SOURCE_DIR) / rel;
+}
+
+/// True when @p a and @p b hold the same bits (the sign of a zero included).
+inline bool sameBits(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<size_t>(a.size())) == 0;
+}
+
+/// Sets the process-wide plane skipping back to its default when it goes
+/// out of scope (a failed assertion or an exception included).
+struct SkippingRestored {
+  ~SkippingRestored() { BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic); }
+};
+
+/// Solves A x = b by CG (tolerance 1e-10, from x = 0) for @p b with its
+/// in-plane components zeroed, with the products skipping zero planes and
+/// without: expects the normal plane alone in the first and the same
+/// iterations (more than 2) and bits in both. Then sets b's component
+/// @p inplane_dof (an in-plane one) to 1 and expects the full products and a
+/// solution not zero there. @return the first solution and its b.
+inline std::pair<Eigen::VectorXd, Eigen::VectorXd>
+expectNormalPlaneSolve(const SparseMatrix& A, Eigen::VectorXd b, int inplane_dof) {
+  const int n = static_cast<int>(A.rows());
+  for (int i = 0; i < n; i += 3)
+    b[i] = b[i + 1] = 0;
+  const SkippingRestored restore;
+  Eigen::VectorXd x[2];
+  int iterations[2];
+  for (int k = 0; k < 2; ++k) {
+    BlockMatrix::usePlaneSkipping(k == 0 ? PlaneSkipping::Automatic : PlaneSkipping::Never);
+    StepSolver solver(A, LinearSolverKind::Cg, 1e-10, 1000);
+    x[k] = Eigen::VectorXd::Zero(n);
+    iterations[k] = solver.solve(b, x[k]);
+    EXPECT_EQ(solver.lastPlanes(), k == 0 ? BlockPlanes::Normal : BlockPlanes::All);
+  }
+  BlockMatrix::usePlaneSkipping(PlaneSkipping::Automatic);
+  EXPECT_GT(iterations[0], 2); // the CG did iterate
+  EXPECT_EQ(iterations[0], iterations[1]);
+  EXPECT_TRUE(sameBits(x[0], x[1]));
+  Eigen::VectorXd b1 = b;
+  b1[inplane_dof] = 1.0;
+  StepSolver solver(A, LinearSolverKind::Cg, 1e-10, 1000);
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(n);
+  solver.solve(b1, y);
+  EXPECT_EQ(solver.lastPlanes(), BlockPlanes::All);
+  EXPECT_NE(y[inplane_dof], 0.0);
+  return {x[0], b};
 }
 
 } // namespace lamina::membrane::test
