@@ -153,14 +153,14 @@ int main(int argc, char** argv) {
   const micro::UnitCell cell = micro::buildCell(spec, {n, n, n});
   homogenize::NonlinearOptions options;
   options.threads = threads;
-  homogenize::NonlinearHomogenizer full(homogenize::gridOf(cell), cell.phase.toVector(),
-                                        homogenize::phaseLaws(spec), options);
+  const std::vector<std::int32_t> phase = cell.phase.toVector();
+  const std::vector<materials::LawPtr> laws = homogenize::phaseLaws(spec);
+  homogenize::NonlinearHomogenizer full(homogenize::gridOf(cell), phase, laws, options);
   const auto t0 = std::chrono::steady_clock::now();
   const auto results = full.run(history);
   const double full_step = seconds(t0) / static_cast<double>(results.size());
-  const std::vector<materials::LawPtr> laws = homogenize::phaseLaws(spec);
   double nonlinear_voxels = 0, newton = 0;
-  for (std::int32_t p : cell.phase.toVector())
+  for (std::int32_t p : phase)
     nonlinear_voxels += laws[static_cast<std::size_t>(p)]->isLinear() ? 0 : 1;
   for (const homogenize::StepResult& r : results)
     newton += r.newton;
